@@ -1,0 +1,48 @@
+//! Identity, material and per-body boundary conditions of a deformable body.
+
+use crate::materials::MaterialModel;
+use crate::math::{DVec2, Real};
+use bevy_ecs::prelude::Component;
+use serde::{Deserialize, Serialize};
+
+/// The body's name from the scene (unique).
+#[derive(Component, Clone, Debug, PartialEq, Eq)]
+pub struct BodyName(pub String);
+
+/// The body's position in the scene's list of bodies. Every cross-body loop
+/// (outputs, energy sums, the state hash) visits bodies in this order, so
+/// results never depend on the ECS storage order.
+#[derive(Component, Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub struct BodyIndex(pub u32);
+
+/// The body's material: density and constitutive model.
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct Material {
+    /// The material's name in the scene.
+    pub name: String,
+    /// Initial mass density ρ (kg/m³).
+    pub density: Real,
+    /// The stress update rule.
+    pub model: MaterialModel,
+}
+
+/// Nodes of this body's layer inside a rectangle have some velocity
+/// components held at zero (e.g. the clamped base of a beam, a symmetry line).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegionConstraint {
+    /// Lower-left corner of the region (m); nodes on its edges are included.
+    pub min: DVec2,
+    /// Upper-right corner of the region (m).
+    pub max: DVec2,
+    /// Hold the x velocity at zero.
+    #[serde(default)]
+    pub fix_x: bool,
+    /// Hold the y velocity at zero.
+    #[serde(default)]
+    pub fix_y: bool,
+}
+
+/// The region constraints of one body's layer.
+#[derive(Component, Clone, Debug, Default, PartialEq)]
+pub struct RegionConstraints(pub Vec<RegionConstraint>);

@@ -1,0 +1,110 @@
+//! The material points of one body as struct-of-arrays columns.
+
+use crate::materials::ConstitutiveModel;
+use crate::math::{DMat2, DVec2, Real, SymTensor};
+use bevy_ecs::prelude::Component;
+
+/// The initial state of one point, used to fill the columns.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NewPoint {
+    /// Position (m).
+    pub position: DVec2,
+    /// Velocity (m/s).
+    pub velocity: DVec2,
+    /// Volume (m³ per metre of thickness).
+    pub volume: Real,
+    /// Mass (kg per metre of thickness).
+    pub mass: Real,
+    /// Half-size of the point's GIMP domain along x and y (m).
+    pub half_size: DVec2,
+    /// Initial Cauchy stress (Pa, tension positive).
+    pub stress: SymTensor,
+}
+
+/// Every point of one body, one column per field. All columns have the same
+/// length; index p is the same point in every column. Points keep their
+/// order for the whole run, so an index identifies a point.
+#[derive(Component, Clone, Debug, Default, PartialEq)]
+pub struct MaterialPoints {
+    /// Current position x_p.
+    pub position: Vec<DVec2>,
+    /// Initial position, for displacements.
+    pub initial_position: Vec<DVec2>,
+    /// Velocity V_p.
+    pub velocity: Vec<DVec2>,
+    /// Mass m_p (constant).
+    pub mass: Vec<Real>,
+    /// Initial volume V_p⁰.
+    pub initial_volume: Vec<Real>,
+    /// Current volume V_p = det(F) V_p⁰.
+    pub volume: Vec<Real>,
+    /// In-plane deformation gradient F (F_zz = 1 in plane strain).
+    pub deformation_gradient: Vec<DMat2>,
+    /// Cauchy stress σ_p.
+    pub stress: Vec<SymTensor>,
+    /// Accumulated small strain ∫ D dt (logarithmic for straight paths).
+    pub strain: Vec<SymTensor>,
+    /// External force applied by the user or a system (N/m); not reset by the
+    /// engine. Gravity is not included here.
+    pub external_force: Vec<DVec2>,
+    /// Half-size of the GIMP domain (undeformed).
+    pub half_size: Vec<DVec2>,
+}
+
+impl MaterialPoints {
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.position.len()
+    }
+
+    /// Whether the body has no point.
+    pub fn is_empty(&self) -> bool {
+        self.position.is_empty()
+    }
+
+    /// Appends a point.
+    pub fn push(&mut self, p: NewPoint) {
+        self.position.push(p.position);
+        self.initial_position.push(p.position);
+        self.velocity.push(p.velocity);
+        self.mass.push(p.mass);
+        self.initial_volume.push(p.volume);
+        self.volume.push(p.volume);
+        self.deformation_gradient.push(DMat2::IDENTITY);
+        self.stress.push(p.stress);
+        self.strain.push(SymTensor::ZERO);
+        self.external_force.push(DVec2::ZERO);
+        self.half_size.push(p.half_size);
+    }
+
+    /// Displacement of point `p` from its initial position.
+    pub fn displacement(&self, p: usize) -> DVec2 {
+        self.position[p] - self.initial_position[p]
+    }
+
+    /// Total mass of the body.
+    pub fn total_mass(&self) -> Real {
+        self.mass.iter().sum()
+    }
+
+    /// Kinetic energy Σ ½ m |V|² and stored strain energy Σ w(σ) V (J/m),
+    /// summed in point order so the result never depends on the thread count.
+    pub fn energies(&self, model: &dyn ConstitutiveModel) -> (Real, Real) {
+        let mut kinetic = 0.0;
+        let mut strain = 0.0;
+        for p in 0..self.len() {
+            kinetic += 0.5 * self.mass[p] * self.velocity[p].length_squared();
+            strain += model.stored_energy_density(&self.stress[p]) * self.volume[p];
+        }
+        (kinetic, strain)
+    }
+
+    /// Total linear momentum Σ m_p V_p.
+    pub fn momentum(&self) -> DVec2 {
+        self.mass
+            .iter()
+            .zip(&self.velocity)
+            .map(|(m, v)| *m * *v)
+            .sum()
+    }
+}

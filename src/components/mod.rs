@@ -1,0 +1,13 @@
+//! ECS components. A deformable body is one entity carrying its material
+//! points as columns ([`MaterialPoints`]), its [`Material`], its own
+//! [`GridLayer`] and the scratch space of its grid transfers.
+
+mod body;
+mod grid_layer;
+mod material_points;
+mod transfer_scratch;
+
+pub use body::{BodyIndex, BodyName, Material, RegionConstraint, RegionConstraints};
+pub use grid_layer::{Fix, GridLayer, GridNode, NodeConstraint};
+pub use material_points::{MaterialPoints, NewPoint};
+pub use transfer_scratch::{MassMomentumForce, TransferScratch};

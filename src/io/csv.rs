@@ -1,0 +1,45 @@
+//! CSV time series: probes and energies.
+
+use crate::resources::{EnergyLog, Probes};
+use std::io::Write;
+use std::path::Path;
+
+/// Writes `probes.csv`: one row per probe and sample time, columns
+/// probe, time, x, y, ux, uy, vx, vy, sxx, syy, sxy, szz (SI, stress tension-positive).
+pub fn write_probes(path: &Path, probes: &Probes) -> std::io::Result<()> {
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(out, "probe,time,x,y,ux,uy,vx,vy,sxx,syy,sxy,szz")?;
+    for s in &probes.samples {
+        let name = &probes.probes[s.probe].name;
+        let [sxx, syy, sxy, szz] = s.stress.to_array();
+        writeln!(
+            out,
+            "{name},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{sxx:e},{syy:e},{sxy:e},{szz:e}",
+            s.time,
+            s.position.x,
+            s.position.y,
+            s.displacement.x,
+            s.displacement.y,
+            s.velocity.x,
+            s.velocity.y
+        )?;
+    }
+    out.flush()
+}
+
+/// Writes `energy.csv`: time, kinetic, strain, total (J per metre of thickness).
+pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(out, "time,kinetic,strain,total")?;
+    for s in &energy.samples {
+        writeln!(
+            out,
+            "{:e},{:e},{:e},{:e}",
+            s.time,
+            s.kinetic,
+            s.strain,
+            s.kinetic + s.strain
+        )?;
+    }
+    out.flush()
+}

@@ -1,0 +1,11 @@
+//! Everything that leaves the engine: CSV time series, VTK files for
+//! ParaView, PNG plots and snapshots, the state hash, and the run-output
+//! folder that ties them together.
+
+pub mod csv;
+pub mod output;
+pub mod plot;
+pub mod state_hash;
+pub mod vtk;
+
+pub use output::RunOutput;

@@ -1,0 +1,253 @@
+//! The output folder of a run: VTK frames during the run; CSV series, the
+//! ParaView collection and PNG plots at the end.
+
+use super::csv;
+use super::plot::{Series, SeriesStyle, plot_points, plot_series};
+use super::vtk::{PointFrame, write_collection, write_point_frame};
+use crate::components::{BodyIndex, MaterialPoints};
+use crate::math::{DVec2, Real};
+use crate::resources::{EnergyLog, Grid, Probes};
+use crate::simulation::Simulation;
+use bevy_ecs::prelude::*;
+use std::path::{Path, PathBuf};
+
+/// Writes a run's results into one folder:
+/// * `vtk/points_NNNNN.vtu` every frame interval and `points.pvd` (open this in ParaView);
+/// * `probes.csv`, `energy.csv`;
+/// * `snapshot.png` (final state coloured by displacement magnitude),
+///   `energy.png` and `probe_<name>_{velocity,displacement,stress}.png`.
+pub struct RunOutput {
+    dir: PathBuf,
+    frame_every: u64,
+    frames: Vec<(Real, String)>,
+    buffers: FrameBuffers,
+}
+
+/// Concatenated columns of all bodies, reused from frame to frame.
+#[derive(Default)]
+struct FrameBuffers {
+    positions: Vec<DVec2>,
+    velocities: Vec<DVec2>,
+    displacements: Vec<DVec2>,
+    stresses: Vec<[Real; 4]>,
+    body: Vec<u32>,
+    marker: Real,
+}
+
+impl RunOutput {
+    /// Creates the folder (and `vtk/` inside it) and writes frame 0.
+    /// `frame_interval` is the simulated time between frames (s).
+    pub fn create(dir: &Path, frame_interval: Real, sim: &mut Simulation) -> std::io::Result<Self> {
+        std::fs::create_dir_all(dir.join("vtk"))?;
+        let frame_every = ((frame_interval / sim.clock().dt).round() as u64).max(1);
+        let mut output = Self {
+            dir: dir.to_path_buf(),
+            frame_every,
+            frames: Vec::new(),
+            buffers: FrameBuffers::default(),
+        };
+        output.write_frame(sim)?;
+        Ok(output)
+    }
+
+    /// The output folder.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// Call after every step: writes a frame when one is due.
+    pub fn after_step(&mut self, sim: &mut Simulation) -> std::io::Result<()> {
+        if sim.clock().step % self.frame_every == 0 {
+            self.write_frame(sim)?;
+        }
+        Ok(())
+    }
+
+    /// Writes the last frame (if not yet written), the collection, the CSV
+    /// files and the plots. Call at the end of a run, also after a failure.
+    pub fn finish(&mut self, sim: &mut Simulation) -> std::io::Result<()> {
+        let time = sim.clock().time;
+        if self.frames.last().is_none_or(|(t, _)| *t != time) {
+            self.write_frame(sim)?;
+        }
+        write_collection(&self.dir.join("points.pvd"), &self.frames)?;
+        let world = sim.world();
+        let probes = world.resource::<Probes>();
+        let energy = world.resource::<EnergyLog>();
+        csv::write_probes(&self.dir.join("probes.csv"), probes)?;
+        csv::write_energy(&self.dir.join("energy.csv"), energy)?;
+        self.plot_energy(energy)?;
+        self.plot_probes(probes)?;
+        self.plot_snapshot(sim.name(), world.resource::<Grid>(), time)
+    }
+
+    fn write_frame(&mut self, sim: &mut Simulation) -> std::io::Result<()> {
+        self.buffers.fill(sim.world_mut());
+        let b = &self.buffers;
+        let frame = PointFrame {
+            positions: &b.positions,
+            velocities: &b.velocities,
+            displacements: &b.displacements,
+            stresses: &b.stresses,
+            body: &b.body,
+        };
+        let name = format!("points_{:05}.vtu", self.frames.len());
+        write_point_frame(&self.dir.join("vtk").join(&name), &frame)?;
+        self.frames.push((sim.clock().time, format!("vtk/{name}")));
+        Ok(())
+    }
+
+    fn plot_energy(&self, energy: &EnergyLog) -> std::io::Result<()> {
+        let pick = |f: fn(&crate::resources::EnergySample) -> Real| -> Vec<(Real, Real)> {
+            energy.samples.iter().map(|s| (s.time, f(s))).collect()
+        };
+        let (kinetic, strain, total) = (
+            pick(|s| s.kinetic),
+            pick(|s| s.strain),
+            pick(|s| s.kinetic + s.strain),
+        );
+        plot_series(
+            &self.dir.join("energy.png"),
+            "Energy",
+            "time (s)",
+            "energy (J/m)",
+            &[
+                Series {
+                    name: "kinetic",
+                    points: &kinetic,
+                    style: SeriesStyle::Line,
+                },
+                Series {
+                    name: "strain",
+                    points: &strain,
+                    style: SeriesStyle::Line,
+                },
+                Series {
+                    name: "total",
+                    points: &total,
+                    style: SeriesStyle::Line,
+                },
+            ],
+        )
+    }
+
+    fn plot_probes(&self, probes: &Probes) -> std::io::Result<()> {
+        type Pick = fn(&crate::resources::ProbeSample) -> Real;
+        let groups: [(&str, &str, [(&str, Pick); 3]); 3] = [
+            (
+                "velocity",
+                "velocity (m/s)",
+                [
+                    ("vx", |s| s.velocity.x),
+                    ("vy", |s| s.velocity.y),
+                    ("|v|", |s| s.velocity.length()),
+                ],
+            ),
+            (
+                "displacement",
+                "displacement (m)",
+                [
+                    ("ux", |s| s.displacement.x),
+                    ("uy", |s| s.displacement.y),
+                    ("|u|", |s| s.displacement.length()),
+                ],
+            ),
+            (
+                "stress",
+                "stress (Pa)",
+                [
+                    ("sxx", |s| s.stress.xx),
+                    ("syy", |s| s.stress.yy),
+                    ("sxy", |s| s.stress.xy),
+                ],
+            ),
+        ];
+        for (k, probe) in probes.probes.iter().enumerate() {
+            for (group, unit, picks) in &groups {
+                let curves: Vec<Vec<(Real, Real)>> = picks
+                    .iter()
+                    .map(|(_, f)| probes.series(k).map(|s| (s.time, f(s))).collect())
+                    .collect();
+                let series: Vec<Series> = picks
+                    .iter()
+                    .zip(&curves)
+                    .map(|((name, _), points)| Series {
+                        name,
+                        points,
+                        style: SeriesStyle::Line,
+                    })
+                    .collect();
+                let path = self
+                    .dir
+                    .join(format!("probe_{}_{group}.png", file_safe(&probe.name)));
+                plot_series(
+                    &path,
+                    &format!("Probe '{}': {group}", probe.name),
+                    "time (s)",
+                    unit,
+                    &series,
+                )?;
+            }
+        }
+        Ok(())
+    }
+
+    fn plot_snapshot(&self, name: &str, grid: &Grid, time: Real) -> std::io::Result<()> {
+        let b = &self.buffers;
+        let magnitude: Vec<Real> = b.displacements.iter().map(|u| u.length()).collect();
+        plot_points(
+            &self.dir.join("snapshot.png"),
+            &format!("{name} at t = {time:.4} s"),
+            "|u| (m)",
+            &b.positions,
+            &magnitude,
+            b.marker,
+            (grid.origin, grid.max()),
+            &[],
+        )
+    }
+}
+
+impl FrameBuffers {
+    /// Copies the current state of every body, in scene order.
+    fn fill(&mut self, world: &mut World) {
+        self.positions.clear();
+        self.velocities.clear();
+        self.displacements.clear();
+        self.stresses.clear();
+        self.body.clear();
+        self.marker = Real::INFINITY;
+        let mut bodies: Vec<(BodyIndex, &MaterialPoints)> = world
+            .query::<(&BodyIndex, &MaterialPoints)>()
+            .iter(world)
+            .map(|(i, p)| (*i, p))
+            .collect();
+        bodies.sort_by_key(|b| b.0);
+        for (index, points) in bodies {
+            self.positions.extend_from_slice(&points.position);
+            self.velocities.extend_from_slice(&points.velocity);
+            self.displacements
+                .extend((0..points.len()).map(|p| points.displacement(p)));
+            self.stresses
+                .extend(points.stress.iter().map(|s| s.to_array()));
+            self.body.extend(std::iter::repeat_n(index.0, points.len()));
+            self.marker = points
+                .half_size
+                .iter()
+                .fold(self.marker, |m, h| m.min(2.0 * h.x));
+        }
+    }
+}
+
+/// A probe name made safe for a file name.
+fn file_safe(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}

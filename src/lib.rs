@@ -1,0 +1,46 @@
+//! # mpdem
+//!
+//! A two-dimensional (plane-strain) material point method engine whose
+//! contacts are computed the discrete-element way, after "DEM-enriched
+//! contact approach for material point method" (see `shared/reference`).
+//!
+//! The engine is an entity-component-system program on `bevy_ecs`:
+//! * a deformable body is an entity with its points as columns
+//!   ([`components::MaterialPoints`]), its [`components::Material`] and its
+//!   own [`components::GridLayer`];
+//! * the grid, clock, settings and records are [`resources`];
+//! * the time step is the [`systems::MpmSchedule`], whose
+//!   [`systems::MpmSystems`] sets follow Algorithm 1 of the paper, and into
+//!   which a user adds systems of their own;
+//! * a scenario is a RON [`scene::Scene`], and a [`Simulation`] runs it.
+//!
+//! `systems/` sits beside `src/` (declared here with `#[path]`) so the
+//! schedule is visible at a glance, while staying one crate.
+
+#![warn(missing_docs)]
+
+pub mod components;
+pub mod io;
+pub mod materials;
+pub mod math;
+pub mod resources;
+pub mod scene;
+pub mod shape_functions;
+mod simulation;
+pub mod transfer;
+
+#[path = "../systems/mod.rs"]
+pub mod systems;
+
+pub use simulation::{Simulation, StepError};
+
+/// The common imports of a user of the library.
+pub mod prelude {
+    pub use crate::components::{BodyName, GridLayer, Material, MaterialPoints};
+    pub use crate::math::{DMat2, DVec2, Real, SymTensor};
+    pub use crate::resources::{Clock, Gravity, Grid, Probes, Settings};
+    pub use crate::scene::Scene;
+    pub use crate::systems::{MpmSchedule, MpmSystems};
+    pub use crate::{Simulation, StepError};
+    pub use bevy_ecs::prelude::*;
+}

@@ -1,0 +1,104 @@
+//! Isotropic linear elasticity in plane strain with the Jaumann objective
+//! stress rate: σ̇ = λ tr(D) I + 2μ D + W σ − σ W (D_zz = 0, so σ_zz
+//! follows λ tr D).
+
+use super::{ConstitutiveModel, jaumann_rotation};
+use crate::math::{Real, SymTensor};
+use crate::scene::rules::{poisson_ratio, positive};
+use serde::{Deserialize, Serialize};
+
+/// Hooke's law in rate form. Fields are the scene's names.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LinearElastic {
+    /// Young's modulus E (Pa), > 0.
+    #[serde(deserialize_with = "crate::scene::rules::de_positive")]
+    pub youngs_modulus: Real,
+    /// Poisson's ratio ν, in (−1, 0.5).
+    #[serde(deserialize_with = "crate::scene::rules::de_poisson_ratio")]
+    pub poisson_ratio: Real,
+}
+
+impl LinearElastic {
+    /// Checks the parameter ranges.
+    pub fn check(&self) -> Result<(), String> {
+        positive(self.youngs_modulus).map_err(|e| format!("youngs_modulus: {e}"))?;
+        poisson_ratio(self.poisson_ratio).map_err(|e| format!("poisson_ratio: {e}"))?;
+        Ok(())
+    }
+
+    /// Shear modulus μ = E / (2(1 + ν)).
+    pub fn shear_modulus(&self) -> Real {
+        self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+    }
+
+    /// Lamé's first parameter λ = E ν / ((1 + ν)(1 − 2ν)).
+    pub fn lame_lambda(&self) -> Real {
+        let nu = self.poisson_ratio;
+        self.youngs_modulus * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))
+    }
+}
+
+impl ConstitutiveModel for LinearElastic {
+    #[inline]
+    fn update_stress(&self, stress: &mut SymTensor, d: &SymTensor, w: Real, dt: Real) {
+        let lambda_tr = self.lame_lambda() * (d.xx + d.yy) * dt;
+        let two_mu = 2.0 * self.shear_modulus() * dt;
+        let elastic = SymTensor::new(
+            lambda_tr + two_mu * d.xx,
+            lambda_tr + two_mu * d.yy,
+            two_mu * d.xy,
+            lambda_tr,
+        );
+        *stress += jaumann_rotation(stress, w, dt) + elastic;
+    }
+
+    fn p_wave_modulus(&self) -> Real {
+        self.lame_lambda() + 2.0 * self.shear_modulus()
+    }
+
+    /// Complementary energy ½ σ : C⁻¹ : σ, which equals the stored strain
+    /// energy for linear elasticity (including any initial stress).
+    fn stored_energy_density(&self, s: &SymTensor) -> Real {
+        let (e, nu) = (self.youngs_modulus, self.poisson_ratio);
+        let normal = s.xx * s.xx + s.yy * s.yy + s.zz * s.zz
+            - 2.0 * nu * (s.xx * s.yy + s.yy * s.zz + s.zz * s.xx);
+        normal / (2.0 * e) + (1.0 + nu) / e * s.xy * s.xy
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const STEEL: LinearElastic = LinearElastic {
+        youngs_modulus: 2e11,
+        poisson_ratio: 0.3,
+    };
+
+    #[test]
+    fn uniaxial_strain_gives_the_constrained_modulus() {
+        let mut s = SymTensor::ZERO;
+        let d = SymTensor::new(1e-3, 0.0, 0.0, 0.0);
+        STEEL.update_stress(&mut s, &d, 0.0, 1.0);
+        let m = STEEL.p_wave_modulus();
+        assert!((s.xx - m * 1e-3).abs() < 1e-6 * s.xx.abs());
+        // Lateral and out-of-plane stresses are λ ε.
+        assert!((s.yy - STEEL.lame_lambda() * 1e-3).abs() < 1e-6 * s.yy.abs());
+        assert_eq!(s.yy, s.zz);
+    }
+
+    #[test]
+    fn stored_energy_is_half_stress_times_strain() {
+        // ε = (1e-3, -2e-4, 3e-4 shear); energy must be ½ σ:ε.
+        let eps = SymTensor::new(1e-3, -2e-4, 3e-4, 0.0);
+        let mut s = SymTensor::ZERO;
+        STEEL.update_stress(&mut s, &eps, 0.0, 1.0);
+        let expected = 0.5 * s.contract(&eps);
+        let got = STEEL.stored_energy_density(&s);
+        assert!(
+            (got - expected).abs() < 1e-9 * expected,
+            "{got} vs {expected}"
+        );
+    }
+}

@@ -1,0 +1,37 @@
+//! Health of the run.
+
+use crate::math::Real;
+use bevy_ecs::prelude::Resource;
+
+/// Where and how the numerics broke down.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("step {step} (t = {time:e} s): body '{body}', point {point}: {field} {detail}")]
+pub struct NumericalFailure {
+    /// Step during which it happened (1-based: the step being computed).
+    pub step: u64,
+    /// Simulated time at the start of that step (s).
+    pub time: Real,
+    /// Name of the body.
+    pub body: String,
+    /// Index of the point in its body.
+    pub point: usize,
+    /// The offending field (e.g. "stress").
+    pub field: &'static str,
+    /// What is wrong with it.
+    pub detail: String,
+}
+
+/// Run-health record written by the systems. The first failure of a step is
+/// kept; the simulation stops after the step in which one was recorded.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct Diagnostics {
+    /// The first numerical failure, if any.
+    pub failure: Option<NumericalFailure>,
+}
+
+impl Diagnostics {
+    /// Records `failure` unless an earlier one is already recorded.
+    pub fn report(&mut self, failure: NumericalFailure) {
+        self.failure.get_or_insert(failure);
+    }
+}

@@ -1,0 +1,151 @@
+//! The shared background grid and the conditions on its edges.
+
+use crate::components::{Fix, NodeConstraint, RegionConstraint};
+use crate::math::{DVec2, Real};
+use bevy_ecs::prelude::Resource;
+use serde::{Deserialize, Serialize};
+
+/// The velocity condition on one edge of the grid, for every layer.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum EdgeCondition {
+    /// Nothing imposed (default): the edge is open.
+    #[default]
+    Free,
+    /// No-slip: both velocity components are zero on the edge nodes.
+    Fixed,
+    /// Roller: the normal velocity component is zero, the tangential free.
+    Slip,
+}
+
+/// Conditions on the four edges of the grid.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct EdgeConditions {
+    /// Edge x = x_min.
+    pub left: EdgeCondition,
+    /// Edge x = x_max.
+    pub right: EdgeCondition,
+    /// Edge y = y_min.
+    pub bottom: EdgeCondition,
+    /// Edge y = y_max.
+    pub top: EdgeCondition,
+}
+
+/// A uniform grid of square cells.
+#[derive(Resource, Clone, Debug, PartialEq)]
+pub struct Grid {
+    /// Position of node (0, 0), the lower-left corner (m).
+    pub origin: DVec2,
+    /// Cell size h (m).
+    pub cell_size: Real,
+    /// Number of cells along x and y.
+    pub cells: [usize; 2],
+    /// Velocity conditions on the edges.
+    pub edges: EdgeConditions,
+}
+
+impl Grid {
+    /// Number of nodes along x and y.
+    pub fn nodes(&self) -> [usize; 2] {
+        [self.cells[0] + 1, self.cells[1] + 1]
+    }
+
+    /// Total number of nodes.
+    pub fn node_count(&self) -> usize {
+        let [nx, ny] = self.nodes();
+        nx * ny
+    }
+
+    /// Upper-right corner (m).
+    pub fn max(&self) -> DVec2 {
+        self.origin + DVec2::new(self.cells[0] as Real, self.cells[1] as Real) * self.cell_size
+    }
+
+    /// Position of the node with row-major index `index`.
+    pub fn node_position(&self, index: usize) -> DVec2 {
+        let nx = self.nodes()[0];
+        self.origin + DVec2::new((index % nx) as Real, (index / nx) as Real) * self.cell_size
+    }
+
+    /// The constraints of a layer: the edge conditions plus the layer's own
+    /// regions, merged per node, sorted by node index.
+    pub fn layer_constraints(&self, regions: &[RegionConstraint]) -> Vec<NodeConstraint> {
+        let [nx, ny] = self.nodes();
+        let edge_fix = |condition: EdgeCondition, normal_is_x: bool| match condition {
+            EdgeCondition::Free => Fix::default(),
+            EdgeCondition::Fixed => Fix { x: true, y: true },
+            EdgeCondition::Slip => Fix {
+                x: normal_is_x,
+                y: !normal_is_x,
+            },
+        };
+        // Nodes on a region's edge count as inside despite round-off.
+        let tolerance = 1e-9 * self.cell_size;
+        let mut constraints = Vec::new();
+        for j in 0..ny {
+            for i in 0..nx {
+                let mut fix = Fix::default();
+                let mut merge = |f: Fix| {
+                    fix.x |= f.x;
+                    fix.y |= f.y;
+                };
+                if i == 0 {
+                    merge(edge_fix(self.edges.left, true));
+                }
+                if i == nx - 1 {
+                    merge(edge_fix(self.edges.right, true));
+                }
+                if j == 0 {
+                    merge(edge_fix(self.edges.bottom, false));
+                }
+                if j == ny - 1 {
+                    merge(edge_fix(self.edges.top, false));
+                }
+                let x = self.node_position(j * nx + i);
+                for r in regions {
+                    let inside =
+                        x.cmpge(r.min - tolerance).all() && x.cmple(r.max + tolerance).all();
+                    if inside {
+                        merge(Fix {
+                            x: r.fix_x,
+                            y: r.fix_y,
+                        });
+                    }
+                }
+                if fix.x || fix.y {
+                    constraints.push(NodeConstraint {
+                        node: (j * nx + i) as u32,
+                        fix,
+                    });
+                }
+            }
+        }
+        constraints
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slip_holds_the_normal_component_and_corners_merge() {
+        let grid = Grid {
+            origin: DVec2::ZERO,
+            cell_size: 1.0,
+            cells: [2, 2],
+            edges: EdgeConditions {
+                left: EdgeCondition::Slip,
+                bottom: EdgeCondition::Slip,
+                ..Default::default()
+            },
+        };
+        let c = grid.layer_constraints(&[]);
+        // Nodes 0, 1, 2 (bottom row) and 3, 6 (left column).
+        let nodes: Vec<u32> = c.iter().map(|c| c.node).collect();
+        assert_eq!(nodes, vec![0, 1, 2, 3, 6]);
+        assert_eq!(c[0].fix, Fix { x: true, y: true });
+        assert_eq!(c[1].fix, Fix { x: false, y: true });
+        assert_eq!(c[3].fix, Fix { x: true, y: false });
+    }
+}

@@ -1,0 +1,14 @@
+//! ECS resources: the state shared by every body (grid, clock, settings,
+//! gravity) and the run's records (probes, energy, diagnostics).
+
+mod clock;
+mod diagnostics;
+mod grid;
+mod records;
+mod settings;
+
+pub use clock::Clock;
+pub use diagnostics::{Diagnostics, NumericalFailure};
+pub use grid::{EdgeCondition, EdgeConditions, Grid};
+pub use records::{EnergyLog, EnergySample, Probe, ProbeSample, Probes};
+pub use settings::{Gravity, Settings, UpdateScheme};

@@ -1,0 +1,111 @@
+//! Time series recorded during a run: probes and energies.
+
+use crate::components::{Material, MaterialPoints};
+use crate::math::{DVec2, Real, SymTensor};
+use bevy_ecs::prelude::{Entity, Resource};
+
+/// A watched material point.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Probe {
+    /// Name from the scene.
+    pub name: String,
+    /// The body entity.
+    pub body: Entity,
+    /// Index of the point in its body (the point nearest the requested location at the start).
+    pub point: usize,
+}
+
+/// One recorded state of a probe.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProbeSample {
+    /// Index of the probe in [`Probes::probes`].
+    pub probe: usize,
+    /// Simulated time (s).
+    pub time: Real,
+    /// Position (m).
+    pub position: DVec2,
+    /// Displacement from the initial position (m).
+    pub displacement: DVec2,
+    /// Velocity (m/s).
+    pub velocity: DVec2,
+    /// Cauchy stress (Pa).
+    pub stress: SymTensor,
+}
+
+/// Probes and their samples, recorded every `every` steps and at step 0.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct Probes {
+    /// The watched points.
+    pub probes: Vec<Probe>,
+    /// Recording period in steps (≥ 1).
+    pub every: u64,
+    /// Samples in time order, probes in order within a time.
+    pub samples: Vec<ProbeSample>,
+}
+
+impl Probes {
+    /// Appends one sample per probe at `time`; `points_of` gives a body's points.
+    pub fn record<'a>(
+        &mut self,
+        time: Real,
+        points_of: impl Fn(Entity) -> Option<&'a MaterialPoints>,
+    ) {
+        for (k, probe) in self.probes.iter().enumerate() {
+            let Some(points) = points_of(probe.body) else {
+                continue;
+            };
+            let p = probe.point;
+            self.samples.push(ProbeSample {
+                probe: k,
+                time,
+                position: points.position[p],
+                displacement: points.displacement(p),
+                velocity: points.velocity[p],
+                stress: points.stress[p],
+            });
+        }
+    }
+
+    /// The samples of probe `index`, in time order.
+    pub fn series(&self, index: usize) -> impl Iterator<Item = &ProbeSample> {
+        self.samples.iter().filter(move |s| s.probe == index)
+    }
+}
+
+/// Energies of all bodies at one time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EnergySample {
+    /// Simulated time (s).
+    pub time: Real,
+    /// Kinetic energy Σ ½ m_p |V_p|² (J/m).
+    pub kinetic: Real,
+    /// Stored strain energy Σ w(σ_p) V_p (J/m).
+    pub strain: Real,
+}
+
+impl EnergySample {
+    /// The energies of `bodies` (in scene order) at `time`.
+    pub fn of<'a>(
+        time: Real,
+        bodies: impl Iterator<Item = (&'a MaterialPoints, &'a Material)>,
+    ) -> Self {
+        let mut sample = Self {
+            time,
+            kinetic: 0.0,
+            strain: 0.0,
+        };
+        for (points, material) in bodies {
+            let (kinetic, strain) = points.energies(material.model.as_model());
+            sample.kinetic += kinetic;
+            sample.strain += strain;
+        }
+        sample
+    }
+}
+
+/// Energy history, recorded with the probes' period.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct EnergyLog {
+    /// Samples in time order.
+    pub samples: Vec<EnergySample>,
+}

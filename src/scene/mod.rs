@@ -1,0 +1,252 @@
+//! Scenes: the RON schema of a scenario, its validation, and spawning it
+//! into a bevy `World`.
+//!
+//! Every struct denies unknown fields; every optional field documents its
+//! default and why. Units are SI; the model is plane strain with unit
+//! thickness, so masses, forces and energies are per metre.
+
+mod location;
+pub mod rules;
+mod shapes;
+mod spawn;
+mod validate;
+mod velocity_field;
+
+pub use location::SourceLocation;
+pub use shapes::Shape;
+pub use spawn::spawn_scene;
+pub use velocity_field::VelocityField;
+
+use crate::components::RegionConstraint;
+use crate::materials::MaterialModel;
+use crate::math::{DVec2, Real};
+use crate::resources::{EdgeConditions, Settings};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// A complete scenario.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Name of the scene, used for the output folder. Default: the file stem.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// The background grid.
+    pub grid: GridSpec,
+    /// Time step and duration.
+    pub time: TimeSpec,
+    /// Gravitational acceleration (m/s²). Default (0, −9.81): Earth, y up.
+    #[serde(default = "default_gravity")]
+    pub gravity: DVec2,
+    /// Numerical settings. Default: uGIMP, USF, FLIP (β = 0), no damping.
+    #[serde(default)]
+    pub settings: Settings,
+    /// Named materials.
+    pub materials: Vec<MaterialSpec>,
+    /// Deformable bodies, in the order they are spawned.
+    pub bodies: Vec<BodySpec>,
+    /// Watched points. Default: none.
+    #[serde(default)]
+    pub probes: Vec<ProbeSpec>,
+    /// Output cadence. Default: see [`OutputSpec`].
+    #[serde(default)]
+    pub output: OutputSpec,
+}
+
+fn default_gravity() -> DVec2 {
+    DVec2::new(0.0, -9.81)
+}
+
+/// The background grid.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GridSpec {
+    /// Lower-left corner (m). Default (0, 0).
+    #[serde(default)]
+    pub origin: DVec2,
+    /// Cell size h (m), > 0.
+    #[serde(deserialize_with = "rules::de_positive")]
+    pub cell_size: Real,
+    /// Number of cells along x and y, each ≥ 2.
+    pub cells: (usize, usize),
+    /// Conditions on the four edges. Default: all `Free`.
+    #[serde(default)]
+    pub edges: EdgeConditions,
+}
+
+/// Time stepping.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TimeSpec {
+    /// Fixed time step Δt (s), > 0. A warning gives the CFL limit when Δt exceeds it.
+    #[serde(deserialize_with = "rules::de_positive")]
+    pub dt: Real,
+    /// End time (s), > 0.
+    #[serde(deserialize_with = "rules::de_positive")]
+    pub end: Real,
+}
+
+/// A named material.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Name, referred to by bodies.
+    pub name: String,
+    /// Mass density ρ (kg/m³), > 0.
+    #[serde(deserialize_with = "rules::de_positive")]
+    pub density: Real,
+    /// Constitutive model, e.g. `LinearElastic((youngs_modulus: 1e5, poisson_ratio: 0.0))`.
+    pub model: MaterialModel,
+}
+
+/// A deformable body generated from a shape.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// Unique name.
+    pub name: String,
+    /// Name of a material of the scene.
+    pub material: String,
+    /// Outline to fill with points.
+    pub shape: Shape,
+    /// Points per cell along each direction (n × n per cell), 1 to 8.
+    /// Default 2, the usual choice for uGIMP (domain half-size h/4).
+    #[serde(default = "default_points_per_cell")]
+    pub points_per_cell: u32,
+    /// Initial velocity. Default: at rest.
+    #[serde(default)]
+    pub velocity: InitialVelocity,
+    /// Initial stress. Default: none (stress free).
+    #[serde(default)]
+    pub initial_stress: Option<InitialStress>,
+    /// Velocity constraints on nodes of this body's layer. Default: none.
+    #[serde(default)]
+    pub constraints: Vec<RegionConstraint>,
+}
+
+fn default_points_per_cell() -> u32 {
+    2
+}
+
+/// Initial velocity of a body's points.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum InitialVelocity {
+    /// The same velocity everywhere (m/s).
+    Constant(DVec2),
+    /// Expressions of the position, e.g. `Field(x: "x*(1-x)", y: "0")`.
+    Field {
+        /// vx(x, y).
+        x: String,
+        /// vy(x, y).
+        y: String,
+    },
+}
+
+impl Default for InitialVelocity {
+    fn default() -> Self {
+        Self::Constant(DVec2::ZERO)
+    }
+}
+
+/// Initial stress of a body.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum InitialStress {
+    /// At-rest state under gravity: σ_yy = −ρ |g_y| (surface − y),
+    /// σ_xx = σ_zz = K0 σ_yy, no shear (compression negative).
+    Geostatic {
+        /// Lateral earth pressure coefficient K0 ≥ 0 (ν/(1−ν) for an elastic soil).
+        #[serde(deserialize_with = "rules::de_non_negative")]
+        k0: Real,
+        /// Height of the free surface (m). Default: the top of the body.
+        #[serde(default)]
+        surface: Option<Real>,
+    },
+}
+
+/// A watched material point.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProbeSpec {
+    /// Name, used in the CSV and the plot file name.
+    pub name: String,
+    /// Name of the body.
+    pub body: String,
+    /// The point of the body nearest this location at the start is watched (m).
+    pub at: DVec2,
+}
+
+/// What is written and how often.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct OutputSpec {
+    /// Simulated time between VTK frames (s). Default: end / 100, a hundred
+    /// frames whatever the duration.
+    pub frame_interval: Option<Real>,
+    /// Simulated time between probe and energy samples (s). Default: every
+    /// step, since a sample costs little and plots want full resolution.
+    pub probe_interval: Option<Real>,
+}
+
+/// Errors of loading or validating a scene; each says where and what was expected.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// The file could not be read.
+    #[error("{path}: cannot read the scene: {source}")]
+    Read {
+        /// The scene file.
+        path: PathBuf,
+        /// The IO error.
+        source: std::io::Error,
+    },
+    /// The file is not a valid scene (syntax, unknown field, wrong type or a value out of range).
+    #[error("{location}: {message}")]
+    Parse {
+        /// Where.
+        location: SourceLocation,
+        /// What was expected.
+        message: String,
+    },
+    /// The scene parses but is inconsistent (unknown name, body outside the grid, ...).
+    #[error("{location}: {message}")]
+    Invalid {
+        /// Where (the file position of the offending entry when known).
+        location: SourceLocation,
+        /// What is wrong and what was expected.
+        message: String,
+    },
+}
+
+impl Scene {
+    /// Reads, parses and validates a scene file.
+    pub fn load(path: &Path) -> Result<Self, SceneError> {
+        let source = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::parse(&source, path)
+    }
+
+    /// Parses and validates scene text; `path` is used in messages and for
+    /// the default name.
+    pub fn parse(source: &str, path: &Path) -> Result<Self, SceneError> {
+        let mut scene: Scene = ron::from_str(source).map_err(|e| SceneError::Parse {
+            location: SourceLocation::at(path, e.span.start.line, e.span.start.col),
+            message: e.code.to_string(),
+        })?;
+        if scene.name.is_none() {
+            scene.name = path.file_stem().map(|s| s.to_string_lossy().into_owned());
+        }
+        scene.validate_in(Some((source, path)))?;
+        Ok(scene)
+    }
+
+    /// Validates a scene built in code: every range rule and every reference.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        self.validate_in(None)
+    }
+
+    /// The scene's name, or "scene" when it has none.
+    pub fn display_name(&self) -> &str {
+        self.name.as_deref().unwrap_or("scene")
+    }
+}

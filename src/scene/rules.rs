@@ -1,0 +1,59 @@
+//! Range rules for scene values, used twice: while a scene file is parsed
+//! (so the error carries the file position) and by [`super::Scene::validate`]
+//! (so scenes built in code are checked by the same rules).
+
+use crate::math::Real;
+use serde::{Deserialize, Deserializer, de::Error};
+
+/// A value must be finite and strictly positive.
+pub fn positive(value: Real) -> Result<Real, String> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(format!("expected a finite value > 0, got {value}"))
+    }
+}
+
+/// A value must be finite and non-negative.
+pub fn non_negative(value: Real) -> Result<Real, String> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(format!("expected a finite value ≥ 0, got {value}"))
+    }
+}
+
+/// Poisson's ratio must lie in (−1, 0.5): 0.5 is incompressible, which
+/// explicit MPM cannot integrate (infinite wave speed).
+pub fn poisson_ratio(value: Real) -> Result<Real, String> {
+    if value > -1.0 && value < 0.5 {
+        Ok(value)
+    } else {
+        Err(format!(
+            "expected Poisson's ratio in (-1, 0.5), got {value}"
+        ))
+    }
+}
+
+/// Applies `rule` to an f64 being deserialized.
+fn checked<'de, D: Deserializer<'de>>(
+    deserializer: D,
+    rule: fn(Real) -> Result<Real, String>,
+) -> Result<Real, D::Error> {
+    rule(Real::deserialize(deserializer)?).map_err(D::Error::custom)
+}
+
+/// `deserialize_with` form of [`positive`].
+pub fn de_positive<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
+    checked(d, positive)
+}
+
+/// `deserialize_with` form of [`non_negative`].
+pub fn de_non_negative<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
+    checked(d, non_negative)
+}
+
+/// `deserialize_with` form of [`poisson_ratio`].
+pub fn de_poisson_ratio<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
+    checked(d, poisson_ratio)
+}

@@ -1,0 +1,216 @@
+//! Body outlines and the filling of an outline with material points.
+
+use crate::math::{DVec2, Real};
+use serde::{Deserialize, Serialize};
+
+/// The outline of a body. Points are placed at the sub-cell centres of the
+/// grid cells (points_per_cell × points_per_cell per cell) that fall inside.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Shape {
+    /// An axis-aligned rectangle.
+    Rectangle {
+        /// Lower-left corner (m).
+        min: DVec2,
+        /// Upper-right corner (m).
+        max: DVec2,
+    },
+    /// A convex polygon, vertices in either winding order.
+    Polygon {
+        /// At least three vertices (m).
+        vertices: Vec<DVec2>,
+    },
+    /// A full disk.
+    Disk {
+        /// Centre (m).
+        center: DVec2,
+        /// Radius (m), > 0.
+        radius: Real,
+    },
+    /// An annulus.
+    Ring {
+        /// Centre (m).
+        center: DVec2,
+        /// Inner radius (m), ≥ 0.
+        inner_radius: Real,
+        /// Outer radius (m), > inner radius.
+        outer_radius: Real,
+    },
+}
+
+impl Shape {
+    /// Checks the geometry: ordered corners, positive radii, a convex polygon.
+    pub fn check(&self) -> Result<(), String> {
+        match self {
+            Self::Rectangle { min, max } => {
+                if !(min.cmplt(*max).all() && min.is_finite() && max.is_finite()) {
+                    return Err(format!(
+                        "rectangle needs min < max in x and y, got min {min}, max {max}"
+                    ));
+                }
+            }
+            Self::Polygon { vertices } => check_convex(vertices)?,
+            Self::Disk { radius, .. } => {
+                if !(radius.is_finite() && *radius > 0.0) {
+                    return Err(format!("disk radius must be > 0, got {radius}"));
+                }
+            }
+            Self::Ring {
+                inner_radius,
+                outer_radius,
+                ..
+            } => {
+                if !(*inner_radius >= 0.0
+                    && outer_radius > inner_radius
+                    && outer_radius.is_finite())
+                {
+                    return Err(format!(
+                        "ring needs 0 ≤ inner_radius < outer_radius, got {inner_radius} and {outer_radius}"
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Lower-left and upper-right corners of the bounding box.
+    pub fn bounds(&self) -> (DVec2, DVec2) {
+        match self {
+            Self::Rectangle { min, max } => (*min, *max),
+            Self::Polygon { vertices } => vertices.iter().fold(
+                (
+                    DVec2::splat(Real::INFINITY),
+                    DVec2::splat(Real::NEG_INFINITY),
+                ),
+                |(lo, hi), v| (lo.min(*v), hi.max(*v)),
+            ),
+            Self::Disk { center, radius } => (*center - *radius, *center + *radius),
+            Self::Ring {
+                center,
+                outer_radius,
+                ..
+            } => (*center - *outer_radius, *center + *outer_radius),
+        }
+    }
+
+    /// Whether `p` is inside (boundary included).
+    pub fn contains(&self, p: DVec2) -> bool {
+        match self {
+            Self::Rectangle { min, max } => p.cmpge(*min).all() && p.cmple(*max).all(),
+            Self::Polygon { vertices } => {
+                let sides = (0..vertices.len()).map(|k| {
+                    let (a, b) = (vertices[k], vertices[(k + 1) % vertices.len()]);
+                    (b - a).perp_dot(p - a)
+                });
+                let (mut left, mut right) = (false, false);
+                for s in sides {
+                    left |= s > 0.0;
+                    right |= s < 0.0;
+                }
+                !(left && right)
+            }
+            Self::Disk { center, radius } => p.distance_squared(*center) <= radius * radius,
+            Self::Ring {
+                center,
+                inner_radius,
+                outer_radius,
+            } => {
+                let r2 = p.distance_squared(*center);
+                r2 >= inner_radius * inner_radius && r2 <= outer_radius * outer_radius
+            }
+        }
+    }
+
+    /// Point positions filling the shape: the centres of an n × n split of
+    /// every grid cell (grid origin `origin`, cell size `h`) that lie inside.
+    pub fn fill(&self, origin: DVec2, h: Real, points_per_cell: u32) -> Vec<DVec2> {
+        let (lo, hi) = self.bounds();
+        let n = points_per_cell as Real;
+        let first = ((lo - origin) / h).floor();
+        let last = ((hi - origin) / h).ceil();
+        let mut points = Vec::new();
+        for j in first.y as i64..last.y as i64 {
+            for b in 0..points_per_cell {
+                for i in first.x as i64..last.x as i64 {
+                    for a in 0..points_per_cell {
+                        let local = DVec2::new((a as Real + 0.5) / n, (b as Real + 0.5) / n);
+                        let p = origin + (DVec2::new(i as Real, j as Real) + local) * h;
+                        if self.contains(p) {
+                            points.push(p);
+                        }
+                    }
+                }
+            }
+        }
+        points
+    }
+}
+
+/// A polygon is accepted when it has three or more vertices and every turn
+/// goes the same way (collinear vertices allowed).
+fn check_convex(vertices: &[DVec2]) -> Result<(), String> {
+    if vertices.len() < 3 {
+        return Err(format!(
+            "polygon needs at least 3 vertices, got {}",
+            vertices.len()
+        ));
+    }
+    let n = vertices.len();
+    let mut sign = 0.0;
+    for k in 0..n {
+        let (a, b, c) = (vertices[k], vertices[(k + 1) % n], vertices[(k + 2) % n]);
+        let turn = (b - a).perp_dot(c - b);
+        if turn != 0.0 {
+            if sign != 0.0 && turn.signum() != sign {
+                return Err(format!(
+                    "polygon is not convex at vertex {} ({b})",
+                    (k + 1) % n
+                ));
+            }
+            sign = turn.signum();
+        }
+    }
+    if sign == 0.0 {
+        return Err("polygon has no area (all vertices on a line)".into());
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rectangle_fill_is_exact() {
+        let s = Shape::Rectangle {
+            min: DVec2::ZERO,
+            max: DVec2::new(1.0, 0.5),
+        };
+        let pts = s.fill(DVec2::ZERO, 0.1, 2);
+        assert_eq!(pts.len(), 10 * 5 * 4);
+        assert!((pts[0] - DVec2::splat(0.025)).length() < 1e-15);
+    }
+
+    #[test]
+    fn ring_and_polygon_membership() {
+        let ring = Shape::Ring {
+            center: DVec2::ZERO,
+            inner_radius: 1.0,
+            outer_radius: 2.0,
+        };
+        assert!(ring.contains(DVec2::new(1.5, 0.0)) && !ring.contains(DVec2::new(0.5, 0.0)));
+        let tri = Shape::Polygon {
+            vertices: vec![DVec2::ZERO, DVec2::X, DVec2::Y],
+        };
+        assert!(tri.check().is_ok());
+        assert!(tri.contains(DVec2::splat(0.2)) && !tri.contains(DVec2::splat(0.8)));
+        let dart = Shape::Polygon {
+            vertices: vec![
+                DVec2::ZERO,
+                DVec2::new(2.0, 0.0),
+                DVec2::new(1.0, 0.3),
+                DVec2::new(1.0, 2.0),
+            ],
+        };
+        assert!(dart.check().unwrap_err().contains("not convex"));
+    }
+}

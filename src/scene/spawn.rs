@@ -1,0 +1,168 @@
+//! Turning a validated scene into a bevy `World`.
+
+use super::{InitialStress, InitialVelocity, Scene, SceneError, SourceLocation, VelocityField};
+use crate::components::{
+    BodyIndex, BodyName, GridLayer, Material, MaterialPoints, NewPoint, RegionConstraints,
+    TransferScratch,
+};
+use crate::math::{DVec2, Real, SymTensor};
+use crate::resources::{Clock, Diagnostics, EnergyLog, EnergySample, Gravity, Grid, Probe, Probes};
+use bevy_ecs::prelude::*;
+
+/// Builds the world of a scene that passed [`Scene::validate`]: resources,
+/// then one entity per body in scene order, then the step-0 probe and
+/// energy samples. Returns the world and warnings for the user (e.g. a time
+/// step above the CFL limit).
+pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
+    let mut world = World::new();
+    let grid = Grid {
+        origin: scene.grid.origin,
+        cell_size: scene.grid.cell_size,
+        cells: [scene.grid.cells.0, scene.grid.cells.1],
+        edges: scene.grid.edges,
+    };
+    let clock = Clock {
+        step: 0,
+        time: 0.0,
+        dt: scene.time.dt,
+        end: scene.time.end,
+    };
+    let every =
+        |interval: Option<Real>| interval.map_or(1, |t| ((t / clock.dt).round() as u64).max(1));
+    let mut warnings = Vec::new();
+    let mut bodies = Vec::with_capacity(scene.bodies.len());
+    for (index, spec) in scene.bodies.iter().enumerate() {
+        let invalid = |message: String| SceneError::Invalid {
+            location: SourceLocation::default(),
+            message,
+        };
+        let material = scene
+            .materials
+            .iter()
+            .find(|m| m.name == spec.material)
+            .ok_or_else(|| {
+                invalid(format!(
+                    "body '{}': unknown material '{}'",
+                    spec.name, spec.material
+                ))
+            })?;
+        let points = fill_body(scene, spec, material.density)
+            .map_err(|e| invalid(format!("body '{}': {e}", spec.name)))?;
+        let lightest = points.mass.iter().copied().fold(Real::INFINITY, Real::min);
+        let entity = world
+            .spawn((
+                BodyName(spec.name.clone()),
+                BodyIndex(index as u32),
+                Material {
+                    name: material.name.clone(),
+                    density: material.density,
+                    model: material.model.clone(),
+                },
+                points,
+                GridLayer::new(grid.node_count(), 1e-9 * lightest),
+                TransferScratch::default(),
+                RegionConstraints(spec.constraints.clone()),
+            ))
+            .id();
+        bodies.push(entity);
+    }
+    for material in &scene.materials {
+        let wave_speed = (material.model.as_model().p_wave_modulus() / material.density).sqrt();
+        let limit = grid.cell_size / wave_speed;
+        if clock.dt > limit {
+            warnings.push(format!(
+                "time.dt = {:e} s exceeds the CFL limit h / c = {limit:e} s of material '{}' (c = {wave_speed:.4e} m/s): the run will likely blow up",
+                clock.dt, material.name
+            ));
+        }
+    }
+    let mut probes = Probes {
+        probes: Vec::new(),
+        every: every(scene.output.probe_interval),
+        samples: Vec::new(),
+    };
+    for spec in &scene.probes {
+        let Some(k) = scene.bodies.iter().position(|b| b.name == spec.body) else {
+            continue;
+        };
+        let points = world
+            .get::<MaterialPoints>(bodies[k])
+            .map(|p| &p.position[..])
+            .unwrap_or(&[]);
+        let nearest = (0..points.len())
+            .min_by(|&a, &b| {
+                points[a]
+                    .distance_squared(spec.at)
+                    .total_cmp(&points[b].distance_squared(spec.at))
+            })
+            .unwrap_or(0);
+        probes.probes.push(Probe {
+            name: spec.name.clone(),
+            body: bodies[k],
+            point: nearest,
+        });
+    }
+    probes.record(0.0, |e| world.get::<MaterialPoints>(e));
+    let initial_energy = EnergySample::of(
+        0.0,
+        bodies
+            .iter()
+            .filter_map(|e| Some((world.get::<MaterialPoints>(*e)?, world.get::<Material>(*e)?))),
+    );
+    world.insert_resource(grid);
+    world.insert_resource(clock);
+    world.insert_resource(scene.settings);
+    world.insert_resource(Gravity(scene.gravity));
+    world.insert_resource(Diagnostics::default());
+    world.insert_resource(probes);
+    world.insert_resource(EnergyLog {
+        samples: vec![initial_energy],
+    });
+    Ok((world, warnings))
+}
+
+/// The points of one body: positions from the shape, then mass, velocity and
+/// initial stress.
+fn fill_body(
+    scene: &Scene,
+    spec: &super::BodySpec,
+    density: Real,
+) -> Result<MaterialPoints, String> {
+    let h = scene.grid.cell_size;
+    let n = spec.points_per_cell as Real;
+    let volume = (h / n) * (h / n);
+    let half_size = DVec2::splat(h / (2.0 * n));
+    let velocity_at: Box<dyn Fn(DVec2) -> Result<DVec2, String>> = match &spec.velocity {
+        InitialVelocity::Constant(v) => {
+            let v = *v;
+            Box::new(move |_| Ok(v))
+        }
+        InitialVelocity::Field { x, y } => {
+            let field = VelocityField::parse(x, y)?;
+            Box::new(move |p| field.at(p))
+        }
+    };
+    let top = spec.shape.bounds().1.y;
+    let mut points = MaterialPoints::default();
+    for position in spec.shape.fill(scene.grid.origin, h, spec.points_per_cell) {
+        let velocity = velocity_at(position)?;
+        let stress = match spec.initial_stress {
+            Some(InitialStress::Geostatic { k0, surface }) => {
+                let vertical = -density
+                    * scene.gravity.y.abs()
+                    * (surface.unwrap_or(top) - position.y).max(0.0);
+                SymTensor::new(k0 * vertical, vertical, 0.0, k0 * vertical)
+            }
+            None => SymTensor::ZERO,
+        };
+        points.push(NewPoint {
+            position,
+            velocity,
+            volume,
+            mass: density * volume,
+            half_size,
+            stress,
+        });
+    }
+    Ok(points)
+}

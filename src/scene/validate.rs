@@ -1,0 +1,204 @@
+//! Consistency checks of a whole scene: ranges, names and geometry.
+
+use super::{
+    InitialStress, InitialVelocity, Scene, SceneError, SourceLocation, VelocityField, rules,
+};
+use std::collections::BTreeSet;
+use std::path::Path;
+
+/// Largest points-per-cell count: 8 × 8 = 64 points per cell is already far
+/// beyond what MPM accuracy gains from; larger counts are almost surely typos.
+const MAX_POINTS_PER_CELL: u32 = 8;
+
+impl Scene {
+    /// Validates; `source` (text and path) lets errors point into the file.
+    pub(super) fn validate_in(&self, source: Option<(&str, &Path)>) -> Result<(), SceneError> {
+        let invalid = |anchors: &[&str], message: String| SceneError::Invalid {
+            location: match source {
+                Some((text, path)) => SourceLocation::find(text, path, anchors),
+                None => SourceLocation::default(),
+            },
+            message,
+        };
+        let quoted = |name: &str| format!("\"{name}\"");
+
+        let grid = &self.grid;
+        rules::positive(grid.cell_size)
+            .map_err(|e| invalid(&["grid", "cell_size"], format!("grid.cell_size: {e}")))?;
+        if grid.cells.0 < 2 || grid.cells.1 < 2 {
+            return Err(invalid(
+                &["grid", "cells"],
+                format!(
+                    "grid.cells must be at least 2 in each direction, got {:?}",
+                    grid.cells
+                ),
+            ));
+        }
+        rules::positive(self.time.dt)
+            .map_err(|e| invalid(&["time", "dt"], format!("time.dt: {e}")))?;
+        rules::positive(self.time.end)
+            .map_err(|e| invalid(&["time", "end"], format!("time.end: {e}")))?;
+        if self.time.dt > self.time.end {
+            return Err(invalid(
+                &["time", "dt"],
+                format!(
+                    "time.dt ({}) is longer than time.end ({})",
+                    self.time.dt, self.time.end
+                ),
+            ));
+        }
+        if !self.gravity.is_finite() {
+            return Err(invalid(
+                &["gravity"],
+                format!("gravity must be finite, got {}", self.gravity),
+            ));
+        }
+        self.settings
+            .check()
+            .map_err(|e| invalid(&["settings"], format!("settings: {e}")))?;
+
+        let mut material_names = BTreeSet::new();
+        for m in &self.materials {
+            let at = ["materials", &quoted(&m.name)];
+            if !material_names.insert(m.name.as_str()) {
+                return Err(invalid(
+                    &at,
+                    format!("material name '{}' is used twice", m.name),
+                ));
+            }
+            rules::positive(m.density).map_err(|e| {
+                invalid(
+                    &[at[0], at[1], "density"],
+                    format!("material '{}': density: {e}", m.name),
+                )
+            })?;
+            m.model
+                .check()
+                .map_err(|e| invalid(&at, format!("material '{}': {e}", m.name)))?;
+        }
+
+        if self.bodies.is_empty() {
+            return Err(invalid(
+                &["bodies"],
+                "the scene has no body: expected at least one in `bodies`".into(),
+            ));
+        }
+        let (grid_min, grid_max) = (
+            grid.origin,
+            grid.origin
+                + glam::DVec2::new(grid.cells.0 as f64, grid.cells.1 as f64) * grid.cell_size,
+        );
+        let margin = self.settings.shape_function.required_margin_cells() * grid.cell_size;
+        let mut body_names = BTreeSet::new();
+        for b in &self.bodies {
+            let name = quoted(&b.name);
+            let fail = |field: &str, message: String| invalid(&["bodies", &name, field], message);
+            if !body_names.insert(b.name.as_str()) {
+                return Err(fail(
+                    "name",
+                    format!("body name '{}' is used twice", b.name),
+                ));
+            }
+            if !material_names.contains(b.material.as_str()) {
+                return Err(fail(
+                    "material",
+                    format!(
+                        "body '{}': unknown material '{}'; expected one of {:?}",
+                        b.name, b.material, material_names
+                    ),
+                ));
+            }
+            if !(1..=MAX_POINTS_PER_CELL).contains(&b.points_per_cell) {
+                return Err(fail(
+                    "points_per_cell",
+                    format!(
+                        "body '{}': points_per_cell must be 1 to {MAX_POINTS_PER_CELL}, got {}",
+                        b.name, b.points_per_cell
+                    ),
+                ));
+            }
+            b.shape
+                .check()
+                .map_err(|e| fail("shape", format!("body '{}': {e}", b.name)))?;
+            let (lo, hi) = b.shape.bounds();
+            if lo.cmplt(grid_min + margin).any() || hi.cmpgt(grid_max - margin).any() {
+                return Err(fail(
+                    "shape",
+                    format!(
+                        "body '{}' (from {lo} to {hi}) is not inside the grid (from {grid_min} to {grid_max}{})",
+                        b.name,
+                        if margin > 0.0 {
+                            format!(", less a margin of {margin} m that the B-spline needs")
+                        } else {
+                            String::new()
+                        }
+                    ),
+                ));
+            }
+            let points = b.shape.fill(grid.origin, grid.cell_size, b.points_per_cell);
+            if points.is_empty() {
+                return Err(fail(
+                    "shape",
+                    format!(
+                        "body '{}' has no point: its shape is smaller than the point spacing",
+                        b.name
+                    ),
+                ));
+            }
+            if let InitialVelocity::Field { x, y } = &b.velocity {
+                let field = VelocityField::parse(x, y)
+                    .map_err(|e| fail("velocity", format!("body '{}': {e}", b.name)))?;
+                for p in &points {
+                    field
+                        .at(*p)
+                        .map_err(|e| fail("velocity", format!("body '{}': {e}", b.name)))?;
+                }
+            }
+            if let Some(InitialStress::Geostatic { k0, .. }) = &b.initial_stress {
+                rules::non_negative(*k0)
+                    .map_err(|e| fail("initial_stress", format!("body '{}': k0: {e}", b.name)))?;
+            }
+            for c in &b.constraints {
+                if c.min.cmpgt(c.max).any() {
+                    return Err(fail(
+                        "constraints",
+                        format!(
+                            "body '{}': constraint region needs min ≤ max, got {} and {}",
+                            b.name, c.min, c.max
+                        ),
+                    ));
+                }
+            }
+        }
+
+        let mut probe_names = BTreeSet::new();
+        for p in &self.probes {
+            let at = ["probes", &quoted(&p.name)];
+            if !probe_names.insert(p.name.as_str()) {
+                return Err(invalid(
+                    &at,
+                    format!("probe name '{}' is used twice", p.name),
+                ));
+            }
+            if !body_names.contains(p.body.as_str()) {
+                return Err(invalid(
+                    &[at[0], at[1], "body"],
+                    format!(
+                        "probe '{}': unknown body '{}'; expected one of {:?}",
+                        p.name, p.body, body_names
+                    ),
+                ));
+            }
+        }
+        for (field, value) in [
+            ("frame_interval", self.output.frame_interval),
+            ("probe_interval", self.output.probe_interval),
+        ] {
+            if let Some(v) = value {
+                rules::positive(v)
+                    .map_err(|e| invalid(&["output", field], format!("output.{field}: {e}")))?;
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,68 @@
+//! Initial velocity given as expressions of the point position.
+
+use crate::math::{DVec2, Real};
+use exmex::prelude::*;
+
+/// A compiled pair of expressions vx(x, y), vy(x, y), e.g. `x*(1-x)`.
+/// Operators and functions are those of the `exmex` crate (+ − * / ^, sin,
+/// cos, exp, sqrt, …); the only variables are `x` and `y` (m).
+#[derive(Debug)]
+pub struct VelocityField {
+    components: [FlatEx<Real>; 2],
+}
+
+impl VelocityField {
+    /// Parses both expressions; the error names the offending one.
+    pub fn parse(x: &str, y: &str) -> Result<Self, String> {
+        let compile = |axis: &str, text: &str| -> Result<FlatEx<Real>, String> {
+            let expr = exmex::parse::<Real>(text)
+                .map_err(|e| format!("velocity {axis} = \"{text}\": {e}"))?;
+            if let Some(bad) = expr.var_names().iter().find(|v| *v != "x" && *v != "y") {
+                return Err(format!(
+                    "velocity {axis} = \"{text}\": unknown variable '{bad}' (only x and y are allowed)"
+                ));
+            }
+            Ok(expr)
+        };
+        Ok(Self {
+            components: [compile("x", x)?, compile("y", y)?],
+        })
+    }
+
+    /// The velocity at `p`.
+    pub fn at(&self, p: DVec2) -> Result<DVec2, String> {
+        let mut v = [0.0; 2];
+        for (value, expr) in v.iter_mut().zip(&self.components) {
+            // exmex orders variables alphabetically: x before y.
+            let args: Vec<Real> = expr
+                .var_names()
+                .iter()
+                .map(|name| if name == "x" { p.x } else { p.y })
+                .collect();
+            *value = expr
+                .eval(&args)
+                .map_err(|e| format!("velocity at {p}: {e}"))?;
+            if !value.is_finite() {
+                return Err(format!("velocity at {p} is not finite ({value})"));
+            }
+        }
+        Ok(DVec2::from(v))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn evaluates_position_expressions() {
+        let f = VelocityField::parse("x*(1-x)", "2*y + x").unwrap();
+        let v = f.at(DVec2::new(0.25, 1.0)).unwrap();
+        assert!((v.x - 0.1875).abs() < 1e-15 && (v.y - 2.25).abs() < 1e-15);
+        assert!(
+            VelocityField::parse("z", "0")
+                .unwrap_err()
+                .contains("unknown variable 'z'")
+        );
+    }
+}

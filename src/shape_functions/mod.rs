@@ -1,0 +1,325 @@
+//! Shape functions: how a material point spreads onto, and reads from, the
+//! nodes of the background grid.
+//!
+//! Each kernel is one-dimensional and stateless ([`Kernel`]); the 2D weight is
+//! the tensor product S_ip = S(x_p − x_i) S(y_p − y_i) and the generalised
+//! gradient is G_ip = (S'(x) S(y), S(x) S'(y)) (paper eqs. 9a/9b). Every
+//! kernel here touches at most three nodes per direction, so a point's
+//! [`Stencil`] is always 3 × 3 nodes (unused entries carry zero weight).
+
+mod bspline;
+mod linear;
+mod ugimp;
+
+pub use bspline::QuadraticBSpline;
+pub use linear::LinearHat;
+pub use ugimp::UGimp;
+
+use crate::math::{DVec2, Real};
+use serde::{Deserialize, Serialize};
+
+/// A one-dimensional shape function.
+pub trait Kernel: Copy + Send + Sync {
+    /// Weight and its derivative with respect to the point position, for a
+    /// point at signed distance `d = x_p − x_i` from a node, cell size `h` and
+    /// particle domain half-size `half_size` (used by GIMP only).
+    fn eval(&self, d: Real, h: Real, half_size: Real) -> (Real, Real);
+}
+
+/// The shape function chosen for a simulation (scene `settings.shape_function`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum ShapeFunction {
+    /// Linear hat functions (original MPM): cheap, but cell-crossing noise.
+    Linear,
+    /// Undeformed GIMP (default): the paper's choice; smooth cell crossing,
+    /// domain half-size fixed at h / (2 × points per cell).
+    #[default]
+    UGimp,
+    /// Quadratic B-spline: smooth, but needs one cell of margin between a
+    /// body and the grid edge (its support is 1.5 cells).
+    QuadraticBSpline,
+}
+
+impl ShapeFunction {
+    /// The stencil of a point at `position` with domain half-size `half_size`,
+    /// or `None` when the point's support reaches outside the grid.
+    pub fn stencil(
+        self,
+        position: DVec2,
+        half_size: DVec2,
+        origin: DVec2,
+        h: Real,
+        nodes: [usize; 2],
+    ) -> Option<Stencil> {
+        match self {
+            Self::Linear => Stencil::new(LinearHat, position, half_size, origin, h, nodes),
+            Self::UGimp => Stencil::new(UGimp, position, half_size, origin, h, nodes),
+            Self::QuadraticBSpline => {
+                Stencil::new(QuadraticBSpline, position, half_size, origin, h, nodes)
+            }
+        }
+    }
+
+    /// Distance from a body's outline to the grid edge that this kernel needs
+    /// so that no weight falls outside the grid, as a multiple of the cell size.
+    pub fn required_margin_cells(self) -> Real {
+        match self {
+            Self::Linear | Self::UGimp => 0.0,
+            Self::QuadraticBSpline => 1.0,
+        }
+    }
+}
+
+/// The 3 × 3 nodes a point maps to, with the 1D weights and derivatives per
+/// direction. Node (a, b) of the stencil is grid node (base[0] + a, base[1] + b).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Stencil {
+    /// Grid index of the stencil's lower-left node.
+    pub base: [u32; 2],
+    /// Weights along x for nodes base[0] .. base[0] + 2.
+    pub wx: [Real; 3],
+    /// Weights along y for nodes base[1] .. base[1] + 2.
+    pub wy: [Real; 3],
+    /// Derivatives of `wx` with respect to the point's x.
+    pub gx: [Real; 3],
+    /// Derivatives of `wy` with respect to the point's y.
+    pub gy: [Real; 3],
+}
+
+impl Stencil {
+    /// Builds the stencil for one kernel; `None` when the support leaves the grid.
+    pub fn new<K: Kernel>(
+        kernel: K,
+        position: DVec2,
+        half_size: DVec2,
+        origin: DVec2,
+        h: Real,
+        nodes: [usize; 2],
+    ) -> Option<Self> {
+        let (bx, wx, gx) = axis(
+            kernel,
+            (position.x - origin.x) / h,
+            h,
+            half_size.x,
+            nodes[0],
+        )?;
+        let (by, wy, gy) = axis(
+            kernel,
+            (position.y - origin.y) / h,
+            h,
+            half_size.y,
+            nodes[1],
+        )?;
+        Some(Self {
+            base: [bx, by],
+            wx,
+            wy,
+            gx,
+            gy,
+        })
+    }
+
+    /// Calls `f(node_index, weight, gradient)` for the nine stencil nodes, where
+    /// `node_index` is the row-major index into a grid with `row_len` nodes per row.
+    #[inline(always)]
+    pub fn for_each_node(&self, row_len: usize, f: impl FnMut(usize, Real, DVec2)) {
+        self.for_each_node_from([0, 0], row_len, f);
+    }
+
+    /// Like [`Stencil::for_each_node`], with indices into a rectangle of nodes
+    /// whose lower-left node is grid node `origin` and whose rows are `row_len` long.
+    #[inline(always)]
+    pub fn for_each_node_from(
+        &self,
+        origin: [u32; 2],
+        row_len: usize,
+        mut f: impl FnMut(usize, Real, DVec2),
+    ) {
+        let column = (self.base[0] - origin[0]) as usize;
+        for b in 0..3 {
+            let row = (self.base[1] - origin[1]) as usize + b;
+            let first = row * row_len + column;
+            for a in 0..3 {
+                let weight = self.wx[a] * self.wy[b];
+                let gradient = DVec2::new(self.gx[a] * self.wy[b], self.wx[a] * self.gy[b]);
+                f(first + a, weight, gradient);
+            }
+        }
+    }
+}
+
+/// One direction of a stencil: the first node index, weights and derivatives.
+/// `s` is the point coordinate in cell units from the grid origin.
+fn axis<K: Kernel>(
+    kernel: K,
+    s: Real,
+    h: Real,
+    half_size: Real,
+    nodes: usize,
+) -> Option<(u32, [Real; 3], [Real; 3])> {
+    if !s.is_finite() || nodes < 3 {
+        return None;
+    }
+    // The three nodes nearest the point cover every kernel's support
+    // (support radius at most 1.5 cells).
+    let first = (s - 0.5).floor() as i64;
+    let eval = |node: i64| kernel.eval((s - node as Real) * h, h, half_size);
+    let last_node = nodes as i64 - 1;
+    for node in first..first + 3 {
+        if (node < 0 || node > last_node) && eval(node).0 != 0.0 {
+            return None;
+        }
+    }
+    let base = first.clamp(0, last_node - 2);
+    let mut weights = [0.0; 3];
+    let mut derivatives = [0.0; 3];
+    for k in 0..3 {
+        (weights[k], derivatives[k]) = eval(base + k as i64);
+    }
+    Some((base as u32, weights, derivatives))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const H: Real = 0.1;
+    const NODES: [usize; 2] = [21, 21];
+    const KINDS: [ShapeFunction; 3] = [
+        ShapeFunction::Linear,
+        ShapeFunction::UGimp,
+        ShapeFunction::QuadraticBSpline,
+    ];
+
+    /// Positions that sweep across several cell boundaries, including points
+    /// exactly on nodes and on the edges of a GIMP domain.
+    fn positions() -> impl Iterator<Item = DVec2> {
+        (0..=400).map(|k| {
+            let t = 0.5 + k as Real * 0.0025; // 0.5 .. 1.5: crosses 10 cells
+            DVec2::new(t, 1.3 - 0.37 * t)
+        })
+    }
+
+    fn sums(kind: ShapeFunction, p: DVec2, half: DVec2) -> (Real, DVec2, DVec2, DMat2Sum) {
+        let st = kind
+            .stencil(p, half, DVec2::ZERO, H, NODES)
+            .expect("inside the grid");
+        let (mut s, mut g, mut x) = (0.0, DVec2::ZERO, DVec2::ZERO);
+        let mut gx = DMat2Sum::default();
+        st.for_each_node(NODES[0], |node, w, grad| {
+            let xi = DVec2::new((node % NODES[0]) as Real * H, (node / NODES[0]) as Real * H);
+            s += w;
+            g += grad;
+            x += w * xi;
+            gx.add(xi, grad);
+        });
+        (s, g, x, gx)
+    }
+
+    /// Σ x_i ⊗ G_ip, which must be the identity for linear reproduction.
+    #[derive(Default)]
+    struct DMat2Sum([Real; 4]);
+    impl DMat2Sum {
+        fn add(&mut self, xi: DVec2, g: DVec2) {
+            self.0[0] += xi.x * g.x;
+            self.0[1] += xi.x * g.y;
+            self.0[2] += xi.y * g.x;
+            self.0[3] += xi.y * g.y;
+        }
+    }
+
+    // Tolerance: sums of nine O(1) terms in f64, so a few ulps of 1.
+    const TOL: Real = 1e-12;
+
+    #[test]
+    fn partition_of_unity_and_zero_gradient_sum() {
+        for kind in KINDS {
+            for half in [H / 4.0, H / 2.0] {
+                for p in positions() {
+                    let (s, g, _, _) = sums(kind, p, DVec2::splat(half));
+                    assert!((s - 1.0).abs() < TOL, "{kind:?} at {p}: Σ S = {s}");
+                    assert!(g.length() < TOL / H, "{kind:?} at {p}: Σ G = {g}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn reproduces_a_linear_field() {
+        for kind in KINDS {
+            for p in positions() {
+                let (_, _, x, gx) = sums(kind, p, DVec2::splat(H / 4.0));
+                assert!((x - p).length() < TOL, "{kind:?}: Σ S x_i = {x} at {p}");
+                let m = gx.0;
+                assert!(
+                    (m[0] - 1.0).abs() < 1e-9 && m[1].abs() < 1e-9,
+                    "{kind:?} {m:?}"
+                );
+                assert!(
+                    m[2].abs() < 1e-9 && (m[3] - 1.0).abs() < 1e-9,
+                    "{kind:?} {m:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn gradient_is_the_derivative_of_the_weight() {
+        // Central difference with step 1e-7 cells: truncation O(1e-14),
+        // round-off O(1e-9) relative to 1/h.
+        let eps = 1e-8;
+        for kind in KINDS {
+            for p in positions() {
+                let half = DVec2::splat(H / 4.0);
+                let st = kind.stencil(p, half, DVec2::ZERO, H, NODES).unwrap();
+                let plus = kind
+                    .stencil(p + DVec2::X * eps, half, DVec2::ZERO, H, NODES)
+                    .unwrap();
+                let minus = kind
+                    .stencil(p - DVec2::X * eps, half, DVec2::ZERO, H, NODES)
+                    .unwrap();
+                // The hat's derivative jumps at nodes: skip differences that straddle one.
+                let on_node = ((p.x / H) - (p.x / H).round()).abs() * H < 2.0 * eps;
+                if plus.base != minus.base || (kind == ShapeFunction::Linear && on_node) {
+                    continue;
+                }
+                for a in 0..3 {
+                    let fd = (plus.wx[a] - minus.wx[a]) / (2.0 * eps);
+                    assert!(
+                        (fd - st.gx[a]).abs() < 1e-5 / H,
+                        "{kind:?} at {p}: {fd} vs {}",
+                        st.gx[a]
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn support_outside_the_grid_is_refused() {
+        let half = DVec2::splat(H / 4.0);
+        // A GIMP domain that crosses the left grid edge.
+        assert!(
+            ShapeFunction::UGimp
+                .stencil(DVec2::new(0.01, 1.0), half, DVec2::ZERO, H, NODES)
+                .is_none()
+        );
+        // A GIMP domain that touches the edge from inside is fine.
+        assert!(
+            ShapeFunction::UGimp
+                .stencil(DVec2::new(0.025, 1.0), half, DVec2::ZERO, H, NODES)
+                .is_some()
+        );
+        // The B-spline needs a node beyond the edge for a point in the first cell.
+        assert!(
+            ShapeFunction::QuadraticBSpline
+                .stencil(DVec2::new(0.025, 1.0), half, DVec2::ZERO, H, NODES)
+                .is_none()
+        );
+        assert!(
+            ShapeFunction::Linear
+                .stencil(DVec2::new(-0.01, 1.0), half, DVec2::ZERO, H, NODES)
+                .is_none()
+        );
+    }
+}

@@ -1,0 +1,169 @@
+//! The library entry point: a world and its step schedule.
+
+use crate::components::{BodyIndex, BodyName, MaterialPoints};
+use crate::io::state_hash::StateHasher;
+use crate::math::Real;
+use crate::resources::{Clock, Diagnostics, NumericalFailure};
+use crate::scene::{Scene, SceneError, spawn_scene};
+use crate::systems::build_schedule;
+use bevy_ecs::prelude::*;
+use bevy_ecs::system::ScheduleSystem;
+use std::path::Path;
+
+/// Why a step could not be taken.
+#[derive(Debug, thiserror::Error)]
+pub enum StepError {
+    /// The numerics broke down (non-finite value, point out of the grid, ...).
+    #[error("numerical failure at {0}")]
+    Numerical(#[from] NumericalFailure),
+    /// The schedule could not be built (e.g. two user systems in one set
+    /// touching the same data without an order between them).
+    #[error("the step schedule is invalid: {0}")]
+    Schedule(String),
+}
+
+/// A running simulation: the ECS world (bodies, grid, clock, records) and
+/// the step schedule.
+///
+/// ```no_run
+/// use mpdem::prelude::*;
+/// let mut sim = Simulation::from_scene_file("scenes/wave_1d.ron".as_ref())?;
+/// sim.run_until(0.1)?;
+/// println!("state hash {:016x}", sim.state_hash());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub struct Simulation {
+    world: World,
+    schedule: Schedule,
+    name: String,
+    warnings: Vec<String>,
+}
+
+impl Simulation {
+    /// Loads, validates and spawns a scene file.
+    pub fn from_scene_file(path: &Path) -> Result<Self, SceneError> {
+        Self::from_scene(&Scene::load(path)?)
+    }
+
+    /// Validates and spawns a scene (e.g. one built in code).
+    pub fn from_scene(scene: &Scene) -> Result<Self, SceneError> {
+        scene.validate()?;
+        let (world, warnings) = spawn_scene(scene)?;
+        let schedule = build_schedule(scene.settings.scheme);
+        Ok(Self {
+            world,
+            schedule,
+            name: scene.display_name().to_owned(),
+            warnings,
+        })
+    }
+
+    /// The scene's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Warnings found while building (e.g. a time step above the CFL limit).
+    pub fn warnings(&self) -> &[String] {
+        &self.warnings
+    }
+
+    /// The ECS world: bodies, resources and records.
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// The ECS world, mutable (spawn entities, insert resources, edit points).
+    pub fn world_mut(&mut self) -> &mut World {
+        &mut self.world
+    }
+
+    /// The clock.
+    pub fn clock(&self) -> Clock {
+        *self.world.resource::<Clock>()
+    }
+
+    /// Adds user systems to the step, e.g.
+    /// `sim.add_systems(my_load.in_set(MpmSystems::Boundary))`. The schedule
+    /// is rebuilt at once, so an ambiguous addition is reported here.
+    pub fn add_systems<M>(
+        &mut self,
+        systems: impl IntoScheduleConfigs<ScheduleSystem, M>,
+    ) -> Result<(), StepError> {
+        self.schedule.add_systems(systems);
+        self.initialize_schedule()
+    }
+
+    fn initialize_schedule(&mut self) -> Result<(), StepError> {
+        match self.schedule.initialize(&mut self.world) {
+            Ok(_) => Ok(()),
+            Err(e) => Err(StepError::Schedule(
+                e.to_string(self.schedule.graph(), &self.world),
+            )),
+        }
+    }
+
+    /// Takes one step. A numerical failure found during the step is returned
+    /// (and the state is left as the failed step made it).
+    pub fn step(&mut self) -> Result<(), StepError> {
+        self.initialize_schedule()?;
+        self.schedule.run(&mut self.world);
+        match self.world.resource_mut::<Diagnostics>().failure.take() {
+            Some(failure) => Err(failure.into()),
+            None => Ok(()),
+        }
+    }
+
+    /// Steps until the simulated time reaches `time` (within half a step).
+    pub fn run_until(&mut self, time: Real) -> Result<(), StepError> {
+        let target = (time / self.clock().dt).round() as u64;
+        while self.clock().step < target {
+            self.step()?;
+        }
+        Ok(())
+    }
+
+    /// Steps to the scene's end time.
+    pub fn run(&mut self) -> Result<(), StepError> {
+        let end = self.clock().end;
+        self.run_until(end)
+    }
+
+    /// Bodies in scene order with their names.
+    pub fn bodies(&mut self) -> Vec<(Entity, String)> {
+        let mut bodies: Vec<(BodyIndex, Entity, String)> = self
+            .world
+            .query::<(Entity, &BodyIndex, &BodyName)>()
+            .iter(&self.world)
+            .map(|(e, i, n)| (*i, e, n.0.clone()))
+            .collect();
+        bodies.sort_by_key(|b| b.0);
+        bodies.into_iter().map(|(_, e, n)| (e, n)).collect()
+    }
+
+    /// The points of a body.
+    pub fn points(&self, body: Entity) -> Option<&MaterialPoints> {
+        self.world.get::<MaterialPoints>(body)
+    }
+
+    /// The points of the body named `name`.
+    pub fn points_of(&mut self, name: &str) -> Option<&MaterialPoints> {
+        let entity = self.bodies().into_iter().find(|(_, n)| n == name)?.0;
+        self.points(entity)
+    }
+
+    /// FNV-1a hash of every point's state (position, velocity, deformation
+    /// gradient, volume, stress, strain) of every body in scene order, and of
+    /// the clock. Equal hashes mean bit-identical states.
+    pub fn state_hash(&mut self) -> u64 {
+        let mut hasher = StateHasher::default();
+        let clock = self.clock();
+        hasher.add_u64(clock.step);
+        for (entity, _) in self.bodies() {
+            if let Some(points) = self.points(entity) {
+                hasher.add_points(points);
+            }
+        }
+        hasher.finish()
+    }
+}

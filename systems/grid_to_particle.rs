@@ -1,0 +1,45 @@
+//! Algorithm 1, line 16: velocity and position of the points (eqs. 11a/11b).
+
+use crate::components::{GridLayer, MaterialPoints, TransferScratch};
+use crate::math::DVec2;
+use crate::resources::{Clock, Grid, Settings};
+use bevy_ecs::prelude::*;
+use rayon::prelude::*;
+
+/// With v^n = Σ S_ip v_i^n and v^{n+1} = Σ S_ip v_i^{n+1} interpolated at x^n:
+/// * eq. 11a: V^{n+1} = (1 − β)(V^n + v^{n+1} − v^n) + β v^{n+1}, where
+///   v^{n+1} − v^n = Σ S_ip a_i Δt;
+/// * eq. 11b: x^{n+1} = x^n + ½(v^n + v^{n+1}) Δt − ½ β (V^n − v^n) Δt.
+///
+/// Reads: `Grid`, `Settings`, `Clock`, `GridLayer`, `TransferScratch::stencils`.
+/// Writes: `MaterialPoints` (position, velocity).
+pub fn grid_to_particle(
+    grid: Res<Grid>,
+    settings: Res<Settings>,
+    clock: Res<Clock>,
+    mut bodies: Query<(&mut MaterialPoints, &GridLayer, &TransferScratch)>,
+) {
+    let row_len = grid.nodes()[0];
+    let (dt, beta) = (clock.dt, settings.pic_fraction);
+    for (mut points, layer, scratch) in &mut bodies {
+        let MaterialPoints {
+            position, velocity, ..
+        } = &mut *points;
+        let nodes = &layer.nodes;
+        (
+            position.par_iter_mut(),
+            velocity.par_iter_mut(),
+            scratch.stencils.par_iter(),
+        )
+            .into_par_iter()
+            .for_each(|(x, v, stencil)| {
+                let (mut grid_old, mut grid_new) = (DVec2::ZERO, DVec2::ZERO);
+                stencil.for_each_node(row_len, |i, w, _| {
+                    grid_old += w * nodes[i].velocity;
+                    grid_new += w * nodes[i].velocity_new;
+                });
+                *x += (0.5 * (grid_old + grid_new) - 0.5 * beta * (*v - grid_old)) * dt;
+                *v = (1.0 - beta) * (*v + grid_new - grid_old) + beta * grid_new;
+            });
+    }
+}

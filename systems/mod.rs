@@ -1,0 +1,121 @@
+//! The time step as a bevy schedule: one file per step of Algorithm 1.
+//!
+//! [`MpmSchedule`] runs the [`MpmSystems`] sets strictly one after the other,
+//! on a single-threaded executor (parallelism lives inside the systems, over
+//! point and node columns) and with ambiguity detection set to error, so two
+//! systems that touch the same data in one set must be ordered explicitly.
+//! A user system joins the step with `.in_set(MpmSystems::X)`.
+
+mod boundary;
+mod diagnostics;
+mod grid_reset;
+mod grid_to_particle;
+mod nodal_solve;
+mod particle_to_grid;
+mod stress_update;
+
+pub use boundary::rebuild_node_constraints;
+pub use diagnostics::{advance_clock, check_finite, record_probes_and_energy};
+pub use grid_reset::reset_grid_layers;
+pub use grid_to_particle::grid_to_particle;
+pub use nodal_solve::solve_nodal_momentum;
+pub use particle_to_grid::particle_to_grid;
+pub use stress_update::update_stress;
+
+use crate::resources::UpdateScheme;
+use bevy_ecs::prelude::*;
+use bevy_ecs::schedule::{LogLevel, ScheduleBuildSettings, ScheduleLabel, SingleThreadedExecutor};
+
+/// The label of the MPM step schedule.
+#[derive(ScheduleLabel, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct MpmSchedule;
+
+/// The sets of one step, in Algorithm 1 order for USF (see [`MpmSystems::order`]).
+/// Line numbers refer to Algorithm 1 of the paper.
+#[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum MpmSystems {
+    /// Empty: a hook for user systems at the start of the step.
+    First,
+    /// Zero every layer (l. 2).
+    GridReset,
+    /// Stage events, prescribed motions, boundary conditions (l. 3).
+    Boundary,
+    /// Rebuild contact neighbour lists every `iterperiod` steps (l. 5–8).
+    Neighbours,
+    /// Detect contacts and compute DEM forces (l. 9).
+    Contact,
+    /// Contact forces to points and nodes, reactions to blocks (l. 10).
+    ContactTransfer,
+    /// Mass and momentum to each body's layer (l. 12).
+    ParticleToGrid,
+    /// Strain rate and constitutive update at the points (l. 13).
+    StressUpdate,
+    /// Internal + external forces, momentum update, boundary conditions (l. 14–15).
+    NodalSolve,
+    /// Velocity and position update of the points (l. 16, eq. 11).
+    GridToParticle,
+    /// Integration of dynamic rigid blocks.
+    RigidBodies,
+    /// Clock, finiteness check, probes and energies.
+    Diagnostics,
+    /// Empty: a hook for user systems at the end of the step.
+    Last,
+}
+
+impl MpmSystems {
+    /// The order of the sets for an update scheme: USF as Algorithm 1; USL
+    /// moves the stress update after the grid-to-particle transfer.
+    pub fn order(scheme: UpdateScheme) -> [Self; 13] {
+        use MpmSystems::*;
+        let (middle_a, middle_b, middle_c) = match scheme {
+            UpdateScheme::Usf => (StressUpdate, NodalSolve, GridToParticle),
+            UpdateScheme::Usl => (NodalSolve, GridToParticle, StressUpdate),
+        };
+        [
+            First,
+            GridReset,
+            Boundary,
+            Neighbours,
+            Contact,
+            ContactTransfer,
+            ParticleToGrid,
+            middle_a,
+            middle_b,
+            middle_c,
+            RigidBodies,
+            Diagnostics,
+            Last,
+        ]
+    }
+}
+
+/// A schedule with the sets chained in the order of `scheme` and every
+/// built-in system in its set.
+pub fn build_schedule(scheme: UpdateScheme) -> Schedule {
+    let mut schedule = Schedule::new(MpmSchedule);
+    schedule.set_executor(SingleThreadedExecutor::new());
+    schedule.set_build_settings(ScheduleBuildSettings {
+        ambiguity_detection: LogLevel::Error,
+        ..Default::default()
+    });
+    for pair in MpmSystems::order(scheme).windows(2) {
+        schedule.configure_sets(pair[0].before(pair[1]));
+    }
+    add_default_systems(&mut schedule);
+    schedule
+}
+
+/// Puts every built-in system into its set (the engine's default plugin).
+pub fn add_default_systems(schedule: &mut Schedule) {
+    schedule.add_systems((
+        reset_grid_layers.in_set(MpmSystems::GridReset),
+        rebuild_node_constraints.in_set(MpmSystems::Boundary),
+        particle_to_grid.in_set(MpmSystems::ParticleToGrid),
+        update_stress.in_set(MpmSystems::StressUpdate),
+        solve_nodal_momentum.in_set(MpmSystems::NodalSolve),
+        grid_to_particle.in_set(MpmSystems::GridToParticle),
+        (check_finite, advance_clock, record_probes_and_energy)
+            .chain()
+            .in_set(MpmSystems::Diagnostics),
+    ));
+}

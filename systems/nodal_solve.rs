@@ -1,0 +1,59 @@
+//! Algorithm 1, lines 14–15: nodal forces and the momentum update (eqs. 7a, 8a, 8b).
+
+use crate::components::{GridLayer, MaterialPoints, TransferScratch};
+use crate::math::{DVec2, Real};
+use crate::resources::{Clock, Grid, Settings};
+use bevy_ecs::prelude::*;
+use rayon::prelude::*;
+
+/// Scatters the internal force f_i,int = −Σ_p V_p σ_p · G_ip, then per node
+/// f_i = f_ext + f_int, less local damping α |f| sign(v) per component
+/// (Cundall 1987), p_i ← p_i + f_i Δt and v_i^{n+1} = p_i / m_i, constrained.
+///
+/// Reads: `Grid`, `Settings`, `Clock`, `MaterialPoints` (volume, stress).
+/// Writes: `TransferScratch::internal_force`, `GridLayer::nodes` (internal force, momentum, new velocity).
+pub fn solve_nodal_momentum(
+    grid: Res<Grid>,
+    settings: Res<Settings>,
+    clock: Res<Clock>,
+    mut bodies: Query<(&MaterialPoints, &mut GridLayer, &mut TransferScratch)>,
+) {
+    let row_len = grid.nodes()[0];
+    let (dt, alpha) = (clock.dt, settings.damping);
+    for (points, mut layer, mut scratch) in &mut bodies {
+        let TransferScratch {
+            stencils,
+            internal_force,
+            ..
+        } = &mut *scratch;
+        internal_force.scatter(
+            stencils,
+            |p| (points.volume[p], points.stress[p]),
+            |(volume, stress), _, g| -*volume * stress.dot(g),
+        );
+        internal_force.add_into(&mut layer.nodes, row_len, |n, f| n.internal_force += f);
+        let cutoff = layer.mass_cutoff;
+        layer.nodes.par_iter_mut().for_each(|n| {
+            if n.mass <= cutoff {
+                n.velocity_new = DVec2::ZERO;
+                return;
+            }
+            let force = n.external_force + n.internal_force;
+            let damping = alpha * force.abs() * DVec2::new(sign(n.velocity.x), sign(n.velocity.y));
+            n.momentum += (force - damping) * dt;
+            n.velocity_new = n.momentum / n.mass;
+        });
+        layer.apply_constraints(|n| &mut n.velocity_new);
+    }
+}
+
+/// The sign of `x`, zero at zero (unlike `f64::signum`).
+fn sign(x: Real) -> Real {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}

@@ -1,0 +1,102 @@
+//! Algorithm 1, line 12: mass, momentum and external force to each body's
+//! layer (eqs. 7b, 8c, 8d), then the nodal velocity p_i / m_i.
+
+use crate::components::{BodyName, GridLayer, MassMomentumForce, MaterialPoints, TransferScratch};
+use crate::math::DVec2;
+use crate::resources::{Clock, Diagnostics, Gravity, Grid, NumericalFailure, Settings};
+use crate::shape_functions::Stencil;
+use bevy_ecs::prelude::*;
+use rayon::prelude::*;
+
+/// Computes every point's stencil at x^n, scatters S_ip m_p, S_ip m_p V_p and
+/// S_ip (m_p g + f_p,ext) to the body's layer, and sets the nodal velocity,
+/// constrained. A point whose support leaves the grid is reported as a
+/// numerical failure and contributes nothing.
+///
+/// Reads: `Grid`, `Settings`, `Gravity`, `MaterialPoints`.
+/// Writes: `TransferScratch`, `GridLayer::nodes` (mass, momentum, external force, velocity), `Diagnostics`.
+pub fn particle_to_grid(
+    grid: Res<Grid>,
+    settings: Res<Settings>,
+    gravity: Res<Gravity>,
+    clock: Res<Clock>,
+    mut diagnostics: ResMut<Diagnostics>,
+    mut bodies: Query<(
+        &BodyName,
+        &MaterialPoints,
+        &mut GridLayer,
+        &mut TransferScratch,
+    )>,
+) {
+    let nodes = grid.nodes();
+    let (origin, h, kernel, g) = (
+        grid.origin,
+        grid.cell_size,
+        settings.shape_function,
+        gravity.0,
+    );
+    for (name, points, mut layer, mut scratch) in &mut bodies {
+        let TransferScratch {
+            stencils,
+            mass_momentum,
+            ..
+        } = &mut *scratch;
+        stencils.resize(points.len(), Stencil::default());
+        let outside = stencils
+            .par_iter_mut()
+            .zip(points.position.par_iter().zip(&points.half_size))
+            .enumerate()
+            .filter_map(|(p, (stencil, (x, half)))| {
+                match kernel.stencil(*x, *half, origin, h, nodes) {
+                    Some(s) => {
+                        *stencil = s;
+                        None
+                    }
+                    None => {
+                        *stencil = Stencil::default();
+                        Some(p)
+                    }
+                }
+            })
+            .min();
+        if let Some(p) = outside {
+            diagnostics.report(NumericalFailure {
+                step: clock.step + 1,
+                time: clock.time,
+                body: name.0.clone(),
+                point: p,
+                field: "position",
+                detail: format!("{} puts its support outside the grid", points.position[p]),
+            });
+        }
+        mass_momentum.scatter(
+            stencils,
+            |p| {
+                (
+                    points.mass[p],
+                    points.velocity[p],
+                    points.mass[p] * g + points.external_force[p],
+                )
+            },
+            |&(m, v, f), w, _| MassMomentumForce {
+                mass: w * m,
+                momentum: (w * m) * v,
+                external_force: w * f,
+            },
+        );
+        mass_momentum.add_into(&mut layer.nodes, nodes[0], |n, t| {
+            n.mass += t.mass;
+            n.momentum += t.momentum;
+            n.external_force += t.external_force;
+        });
+        let cutoff = layer.mass_cutoff;
+        layer.nodes.par_iter_mut().for_each(|n| {
+            n.velocity = if n.mass > cutoff {
+                n.momentum / n.mass
+            } else {
+                DVec2::ZERO
+            };
+        });
+        layer.apply_constraints(|n| &mut n.velocity);
+    }
+}

@@ -1,0 +1,96 @@
+//! Algorithm 1, line 13: strain rate at the points and the constitutive update.
+
+use crate::components::{GridLayer, GridNode, Material, MaterialPoints, TransferScratch};
+use crate::materials::{ConstitutiveModel, MaterialModel};
+use crate::math::{DMat2, Real, outer, rate_of_deformation, spin};
+use crate::resources::{Clock, Grid, Settings, UpdateScheme};
+use crate::shape_functions::Stencil;
+use bevy_ecs::prelude::*;
+use rayon::prelude::*;
+
+/// For every point: velocity gradient L_p = Σ_i v_i ⊗ G_ip, deformation
+/// gradient F ← (I + L Δt) F, volume V = det(F) V⁰, stress from the body's
+/// model with D = sym L and W = skew L, strain ε += D Δt. USF uses the nodal
+/// velocity at the start of the step, USL the updated one; both with the
+/// gradients at x^n.
+///
+/// Reads: `Grid`, `Settings`, `Clock`, `GridLayer`, `TransferScratch::stencils`, `Material`.
+/// Writes: `MaterialPoints` (deformation gradient, volume, stress, strain).
+pub fn update_stress(
+    grid: Res<Grid>,
+    settings: Res<Settings>,
+    clock: Res<Clock>,
+    mut bodies: Query<(&Material, &mut MaterialPoints, &GridLayer, &TransferScratch)>,
+) {
+    let row_len = grid.nodes()[0];
+    let after_momentum = settings.scheme == UpdateScheme::Usl;
+    for (material, mut points, layer, scratch) in &mut bodies {
+        let step = StrainStep {
+            nodes: &layer.nodes,
+            row_len,
+            dt: clock.dt,
+            after_momentum,
+        };
+        match &material.model {
+            MaterialModel::LinearElastic(m) => step.apply(m, &mut points, &scratch.stencils),
+        }
+    }
+}
+
+/// What the stress update of one body reads from its layer.
+struct StrainStep<'a> {
+    nodes: &'a [GridNode],
+    row_len: usize,
+    dt: Real,
+    after_momentum: bool,
+}
+
+impl StrainStep<'_> {
+    fn apply<M: ConstitutiveModel>(
+        &self,
+        model: &M,
+        points: &mut MaterialPoints,
+        stencils: &[Stencil],
+    ) {
+        let MaterialPoints {
+            deformation_gradient,
+            stress,
+            strain,
+            volume,
+            initial_volume,
+            ..
+        } = points;
+        (
+            deformation_gradient.par_iter_mut(),
+            stress.par_iter_mut(),
+            strain.par_iter_mut(),
+            volume.par_iter_mut(),
+            initial_volume.par_iter(),
+            stencils.par_iter(),
+        )
+            .into_par_iter()
+            .for_each(|(f, sigma, eps, v, v0, stencil)| {
+                let l = self.velocity_gradient(stencil);
+                *f = (DMat2::IDENTITY + l * self.dt) * *f;
+                *v = f.determinant() * v0;
+                let d = rate_of_deformation(l);
+                model.update_stress(sigma, &d, spin(l), self.dt);
+                *eps += d * self.dt;
+            });
+    }
+
+    #[inline(always)]
+    fn velocity_gradient(&self, stencil: &Stencil) -> DMat2 {
+        let mut l = DMat2::ZERO;
+        stencil.for_each_node(self.row_len, |i, _, g| {
+            let node = &self.nodes[i];
+            let v = if self.after_momentum {
+                node.velocity_new
+            } else {
+                node.velocity
+            };
+            l += outer(v, g);
+        });
+        l
+    }
+}
