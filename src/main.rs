@@ -1,1 +1,189 @@
-fn main() {}
+//! The `mpdem` command line: run, check and benchmark scenes.
+
+use clap::{Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use mpdem::io::RunOutput;
+use mpdem::scene::Scene;
+use mpdem::{Simulation, bench};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Material point method with DEM-enriched contact (2D, plane strain).
+#[derive(Parser)]
+#[command(version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a scene and write its results (VTK, CSV, PNG).
+    Run {
+        /// The RON scene file.
+        scene: PathBuf,
+        /// Output folder [default: out/<scene name>].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Worker threads [default: all cores]. Results do not depend on it.
+        #[arg(long)]
+        threads: Option<usize>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Validate a scene without running it.
+    Check {
+        /// The RON scene file.
+        scene: PathBuf,
+    },
+    /// Measure particle-updates per second on the standard elastic block.
+    Bench {
+        /// Number of material points (approximate: the block is square).
+        #[arg(long, default_value_t = 40_000)]
+        points: usize,
+        /// Timed steps.
+        #[arg(long, default_value_t = 200)]
+        steps: u64,
+        /// Worker threads [default: all cores].
+        #[arg(long)]
+        threads: Option<usize>,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Run {
+            scene,
+            out,
+            threads,
+            quiet,
+        } => with_threads(threads, || run(&scene, out.as_deref(), quiet)),
+        Command::Check { scene } => check(&scene),
+        Command::Bench {
+            points,
+            steps,
+            threads,
+        } => with_threads(threads, || run_bench(points, steps)),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Runs `f` on a rayon pool of `threads` workers (or the global pool).
+fn with_threads(
+    threads: Option<usize>,
+    f: impl FnOnce() -> Result<(), String> + Send,
+) -> Result<(), String> {
+    match threads {
+        None => f(),
+        Some(0) => Err("--threads must be at least 1".into()),
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map_err(|e| format!("cannot start {n} threads: {e}"))?
+            .install(f),
+    }
+}
+
+fn check(path: &Path) -> Result<(), String> {
+    let scene = Scene::load(path).map_err(|e| e.to_string())?;
+    let sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
+    for w in sim.warnings() {
+        eprintln!("warning: {w}");
+    }
+    let clock = sim.clock();
+    println!(
+        "{}: ok ({} bodies, {} steps of {:e} s)",
+        path.display(),
+        scene.bodies.len(),
+        clock.total_steps(),
+        clock.dt
+    );
+    Ok(())
+}
+
+fn run(path: &Path, out: Option<&Path>, quiet: bool) -> Result<(), String> {
+    let scene = Scene::load(path).map_err(|e| e.to_string())?;
+    let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
+    for w in sim.warnings() {
+        eprintln!("warning: {w}");
+    }
+    let dir = out.map_or_else(|| Path::new("out").join(sim.name()), Path::to_path_buf);
+    let clock = sim.clock();
+    let frame_interval = scene.output.frame_interval.unwrap_or(clock.end / 100.0);
+    let mut output = RunOutput::create(&dir, frame_interval, &mut sim)
+        .map_err(|e| format!("{}: cannot write output: {e}", dir.display()))?;
+    let total = clock.total_steps();
+    let progress = progress_bar(total, quiet);
+    let started = std::time::Instant::now();
+    let mut failure = None;
+    while !sim.clock().finished() {
+        if let Err(e) = sim.step() {
+            failure = Some(e.to_string());
+            break;
+        }
+        output
+            .after_step(&mut sim)
+            .map_err(|e| format!("{}: cannot write output: {e}", dir.display()))?;
+        let now = sim.clock();
+        if now.step % 64 == 0 || now.finished() {
+            progress.set_position(now.step);
+            progress.set_message(format!("t = {:.4e} s", now.time));
+        }
+    }
+    progress.finish_and_clear();
+    output
+        .finish(&mut sim)
+        .map_err(|e| format!("{}: cannot write output: {e}", dir.display()))?;
+    if let Some(message) = failure {
+        return Err(format!(
+            "{message}\nresults up to the failure are in {}",
+            dir.display()
+        ));
+    }
+    let now = sim.clock();
+    let hash = sim.state_hash();
+    println!(
+        "{}: {} steps to t = {} s in {:.1} s; state hash {hash:016x}; results in {}",
+        sim.name(),
+        now.step,
+        now.time,
+        started.elapsed().as_secs_f64(),
+        output.dir().display()
+    );
+    Ok(())
+}
+
+fn progress_bar(total: u64, quiet: bool) -> ProgressBar {
+    if quiet {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());
+    let style =
+        ProgressStyle::with_template("{bar:40} step {pos}/{len} {msg} elapsed {elapsed} ETA {eta}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar());
+    bar.set_style(style);
+    bar
+}
+
+fn run_bench(points: usize, steps: u64) -> Result<(), String> {
+    let scene = bench::elastic_block_scene(points);
+    let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
+    let t = bench::measure(&mut sim, 5, steps).map_err(|e| e.to_string())?;
+    println!(
+        "elastic block: {} points, {} steps, {} threads: {:.3} s, {:.2} M particle-updates/s",
+        t.points,
+        t.steps,
+        rayon::current_num_threads(),
+        t.seconds,
+        t.updates_per_second() / 1e6
+    );
+    Ok(())
+}

@@ -13,6 +13,14 @@ use crate::shape_functions::Stencil;
 use rayon::prelude::*;
 use std::ops::AddAssign;
 
+/// Fewest points one parallel task handles in the per-point loops: below
+/// this, splitting costs more (thread wake-ups) than it gains, and small
+/// bodies run on one thread.
+pub const MIN_POINTS_PER_TASK: usize = 1024;
+
+/// Fewest nodes one parallel task handles in the per-node loops.
+pub const MIN_NODES_PER_TASK: usize = 4096;
+
 /// Points per scatter chunk. Fixed (not derived from the thread count) so that
 /// results do not depend on it; large enough to amortise the patch overhead,
 /// small enough to give both cores many chunks at 10⁴ points.
@@ -76,6 +84,7 @@ impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
     ) {
         nodes
             .par_chunks_mut(row_len)
+            .with_min_len(MIN_NODES_PER_TASK.div_ceil(row_len))
             .enumerate()
             .for_each(|(j, row)| {
                 for patch in &self.patches {
@@ -114,7 +123,7 @@ impl<T: Copy + Default> Patch<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shape_functions::ShapeFunction;
+    use crate::shape_functions::{ShapeFunction, StencilGrid};
 
     /// Scatter of the weights of scattered points must equal a plain
     /// sequential sum up to round-off, and be bit-identical for 1 and 2 threads.
@@ -122,12 +131,18 @@ mod tests {
     fn scatter_matches_a_sequential_sum_and_ignores_the_thread_count() {
         let nodes = [41usize, 31];
         let h = 0.1;
+        let grid = StencilGrid {
+            origin: DVec2::ZERO,
+            cell_size: h,
+            nodes,
+            walls: [[false; 2]; 2],
+        };
         let stencils: Vec<Stencil> = (0..5000)
             .map(|k| {
                 let t = k as Real * 0.618_033_988_75;
                 let p = DVec2::new(0.5 + 3.0 * t.fract(), 0.5 + 2.0 * (t * 0.37).fract());
                 ShapeFunction::UGimp
-                    .stencil(p, DVec2::splat(h / 4.0), DVec2::ZERO, h, nodes)
+                    .stencil(p, DVec2::splat(h / 4.0), &grid)
                     .unwrap()
             })
             .collect();

@@ -2,6 +2,7 @@
 
 use crate::components::{BodyIndex, BodyName, Material, MaterialPoints};
 use crate::resources::{Clock, Diagnostics, EnergyLog, EnergySample, NumericalFailure, Probes};
+use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
@@ -21,48 +22,40 @@ pub fn check_finite(
         .iter()
         .filter_map(|(_, e)| bodies.get(*e).ok().map(|b| (b.1, b.2, b.3)))
     {
-        let bad = [
-            (
-                "position",
-                points
-                    .position
-                    .par_iter()
-                    .position_first(|x| !x.is_finite()),
-            ),
-            (
-                "velocity",
-                points
-                    .velocity
-                    .par_iter()
-                    .position_first(|v| !v.is_finite()),
-            ),
-            (
-                "stress",
-                points.stress.par_iter().position_first(|s| !s.is_finite()),
-            ),
-            (
-                "volume",
-                points.volume.par_iter().position_first(|v| !(*v > 0.0)),
-            ),
-        ];
-        for (field, point) in bad {
-            if let Some(p) = point {
-                let detail = match field {
-                    "position" => format!("is {}", points.position[p]),
-                    "velocity" => format!("is {}", points.velocity[p]),
-                    "stress" => format!("is {:?}", points.stress[p].to_array()),
-                    _ => format!("is {:e} (inverted deformation gradient)", points.volume[p]),
-                };
-                diagnostics.report(NumericalFailure {
-                    step: clock.step + 1,
-                    time: clock.time,
-                    body: name.0.clone(),
-                    point: p,
-                    field,
-                    detail,
-                });
-            }
+        let first_bad = (0..points.len())
+            .into_par_iter()
+            .with_min_len(MIN_POINTS_PER_TASK)
+            .position_first(|p| first_bad_field(points, p).is_some());
+        if let Some(p) = first_bad
+            && let Some((field, detail)) = first_bad_field(points, p)
+        {
+            diagnostics.report(NumericalFailure {
+                step: clock.step + 1,
+                time: clock.time,
+                body: name.0.clone(),
+                point: p,
+                field,
+                detail,
+            });
         }
+    }
+}
+
+/// The first broken field of point `p` and what it holds, if any.
+fn first_bad_field(points: &MaterialPoints, p: usize) -> Option<(&'static str, String)> {
+    if !points.position[p].is_finite() {
+        Some(("position", format!("is {}", points.position[p])))
+    } else if !points.velocity[p].is_finite() {
+        Some(("velocity", format!("is {}", points.velocity[p])))
+    } else if !points.stress[p].is_finite() {
+        Some(("stress", format!("is {:?}", points.stress[p].to_array())))
+    } else if !(points.volume[p] > 0.0) {
+        Some((
+            "volume",
+            format!("is {:e} (inverted deformation gradient)", points.volume[p]),
+        ))
+    } else {
+        None
     }
 }
 

@@ -3,6 +3,7 @@
 use crate::components::{GridLayer, MaterialPoints, TransferScratch};
 use crate::math::DVec2;
 use crate::resources::{Clock, Grid, Settings};
+use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
@@ -32,6 +33,7 @@ pub fn grid_to_particle(
             scratch.stencils.par_iter(),
         )
             .into_par_iter()
+            .with_min_len(MIN_POINTS_PER_TASK)
             .for_each(|(x, v, stencil)| {
                 let (mut grid_old, mut grid_new) = (DVec2::ZERO, DVec2::ZERO);
                 stencil.for_each_node(row_len, |i, w, _| {

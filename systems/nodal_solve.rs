@@ -3,6 +3,7 @@
 use crate::components::{GridLayer, MaterialPoints, TransferScratch};
 use crate::math::{DVec2, Real};
 use crate::resources::{Clock, Grid, Settings};
+use crate::transfer::MIN_NODES_PER_TASK;
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
@@ -33,16 +34,21 @@ pub fn solve_nodal_momentum(
         );
         internal_force.add_into(&mut layer.nodes, row_len, |n, f| n.internal_force += f);
         let cutoff = layer.mass_cutoff;
-        layer.nodes.par_iter_mut().for_each(|n| {
-            if n.mass <= cutoff {
-                n.velocity_new = DVec2::ZERO;
-                return;
-            }
-            let force = n.external_force + n.internal_force;
-            let damping = alpha * force.abs() * DVec2::new(sign(n.velocity.x), sign(n.velocity.y));
-            n.momentum += (force - damping) * dt;
-            n.velocity_new = n.momentum / n.mass;
-        });
+        layer
+            .nodes
+            .par_iter_mut()
+            .with_min_len(MIN_NODES_PER_TASK)
+            .for_each(|n| {
+                if n.mass <= cutoff {
+                    n.velocity_new = DVec2::ZERO;
+                    return;
+                }
+                let force = n.external_force + n.internal_force;
+                let damping =
+                    alpha * force.abs() * DVec2::new(sign(n.velocity.x), sign(n.velocity.y));
+                n.momentum += (force - damping) * dt;
+                n.velocity_new = n.momentum / n.mass;
+            });
         layer.apply_constraints(|n| &mut n.velocity_new);
     }
 }

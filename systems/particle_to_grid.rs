@@ -5,6 +5,7 @@ use crate::components::{BodyName, GridLayer, MassMomentumForce, MaterialPoints, 
 use crate::math::DVec2;
 use crate::resources::{Clock, Diagnostics, Gravity, Grid, NumericalFailure, Settings};
 use crate::shape_functions::Stencil;
+use crate::transfer::{MIN_NODES_PER_TASK, MIN_POINTS_PER_TASK};
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
@@ -29,12 +30,8 @@ pub fn particle_to_grid(
     )>,
 ) {
     let nodes = grid.nodes();
-    let (origin, h, kernel, g) = (
-        grid.origin,
-        grid.cell_size,
-        settings.shape_function,
-        gravity.0,
-    );
+    let stencil_grid = grid.stencil_grid();
+    let (kernel, g) = (settings.shape_function, gravity.0);
     for (name, points, mut layer, mut scratch) in &mut bodies {
         let TransferScratch {
             stencils,
@@ -45,9 +42,10 @@ pub fn particle_to_grid(
         let outside = stencils
             .par_iter_mut()
             .zip(points.position.par_iter().zip(&points.half_size))
+            .with_min_len(MIN_POINTS_PER_TASK)
             .enumerate()
             .filter_map(|(p, (stencil, (x, half)))| {
-                match kernel.stencil(*x, *half, origin, h, nodes) {
+                match kernel.stencil(*x, *half, &stencil_grid) {
                     Some(s) => {
                         *stencil = s;
                         None
@@ -66,7 +64,7 @@ pub fn particle_to_grid(
                 body: name.0.clone(),
                 point: p,
                 field: "position",
-                detail: format!("{} puts its support outside the grid", points.position[p]),
+                detail: format!("{} has left the grid", points.position[p]),
             });
         }
         mass_momentum.scatter(
@@ -90,13 +88,17 @@ pub fn particle_to_grid(
             n.external_force += t.external_force;
         });
         let cutoff = layer.mass_cutoff;
-        layer.nodes.par_iter_mut().for_each(|n| {
-            n.velocity = if n.mass > cutoff {
-                n.momentum / n.mass
-            } else {
-                DVec2::ZERO
-            };
-        });
+        layer
+            .nodes
+            .par_iter_mut()
+            .with_min_len(MIN_NODES_PER_TASK)
+            .for_each(|n| {
+                n.velocity = if n.mass > cutoff {
+                    n.momentum / n.mass
+                } else {
+                    DVec2::ZERO
+                };
+            });
         layer.apply_constraints(|n| &mut n.velocity);
     }
 }

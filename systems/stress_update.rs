@@ -5,6 +5,7 @@ use crate::materials::{ConstitutiveModel, MaterialModel};
 use crate::math::{DMat2, Real, outer, rate_of_deformation, spin};
 use crate::resources::{Clock, Grid, Settings, UpdateScheme};
 use crate::shape_functions::Stencil;
+use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
@@ -69,6 +70,7 @@ impl StrainStep<'_> {
             stencils.par_iter(),
         )
             .into_par_iter()
+            .with_min_len(MIN_POINTS_PER_TASK)
             .for_each(|(f, sigma, eps, v, v0, stencil)| {
                 let l = self.velocity_gradient(stencil);
                 *f = (DMat2::IDENTITY + l * self.dt) * *f;

@@ -2,6 +2,7 @@
 
 use crate::components::{Fix, NodeConstraint, RegionConstraint};
 use crate::math::{DVec2, Real};
+use crate::shape_functions::StencilGrid;
 use bevy_ecs::prelude::Resource;
 use serde::{Deserialize, Serialize};
 
@@ -54,6 +55,20 @@ impl Grid {
     pub fn node_count(&self) -> usize {
         let [nx, ny] = self.nodes();
         nx * ny
+    }
+
+    /// The grid as the shape functions see it: walls where an edge is fixed or slip.
+    pub fn stencil_grid(&self) -> StencilGrid {
+        let wall = |c: EdgeCondition| c != EdgeCondition::Free;
+        StencilGrid {
+            origin: self.origin,
+            cell_size: self.cell_size,
+            nodes: self.nodes(),
+            walls: [
+                [wall(self.edges.left), wall(self.edges.right)],
+                [wall(self.edges.bottom), wall(self.edges.top)],
+            ],
+        }
     }
 
     /// Upper-right corner (m).

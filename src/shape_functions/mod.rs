@@ -42,21 +42,12 @@ pub enum ShapeFunction {
 
 impl ShapeFunction {
     /// The stencil of a point at `position` with domain half-size `half_size`,
-    /// or `None` when the point's support reaches outside the grid.
-    pub fn stencil(
-        self,
-        position: DVec2,
-        half_size: DVec2,
-        origin: DVec2,
-        h: Real,
-        nodes: [usize; 2],
-    ) -> Option<Stencil> {
+    /// or `None` when the point has left `grid`.
+    pub fn stencil(self, position: DVec2, half_size: DVec2, grid: &StencilGrid) -> Option<Stencil> {
         match self {
-            Self::Linear => Stencil::new(LinearHat, position, half_size, origin, h, nodes),
-            Self::UGimp => Stencil::new(UGimp, position, half_size, origin, h, nodes),
-            Self::QuadraticBSpline => {
-                Stencil::new(QuadraticBSpline, position, half_size, origin, h, nodes)
-            }
+            Self::Linear => Stencil::new(LinearHat, position, half_size, grid),
+            Self::UGimp => Stencil::new(UGimp, position, half_size, grid),
+            Self::QuadraticBSpline => Stencil::new(QuadraticBSpline, position, half_size, grid),
         }
     }
 
@@ -68,6 +59,24 @@ impl ShapeFunction {
             Self::QuadraticBSpline => 1.0,
         }
     }
+}
+
+/// What a stencil needs to know of the grid.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StencilGrid {
+    /// Position of node (0, 0) (m).
+    pub origin: DVec2,
+    /// Cell size h (m).
+    pub cell_size: Real,
+    /// Nodes along x and y (each ≥ 3).
+    pub nodes: [usize; 2],
+    /// `walls[axis][side]`: whether the edge (side 0 low, 1 high) is a wall
+    /// (a fixed or slip condition). A point's domain may press against and
+    /// slightly into a wall, as the points next to it move: the weights of
+    /// the nodes beyond a wall, which would hold zero velocity, are dropped.
+    /// Beyond an open edge any weight above round-off means the point has
+    /// left the grid.
+    pub walls: [[bool; 2]; 2],
 }
 
 /// The 3 × 3 nodes a point maps to, with the 1D weights and derivatives per
@@ -87,29 +96,17 @@ pub struct Stencil {
 }
 
 impl Stencil {
-    /// Builds the stencil for one kernel; `None` when the support leaves the grid.
+    /// Builds the stencil for one kernel; `None` when the point has left the grid.
     pub fn new<K: Kernel>(
         kernel: K,
         position: DVec2,
         half_size: DVec2,
-        origin: DVec2,
-        h: Real,
-        nodes: [usize; 2],
+        grid: &StencilGrid,
     ) -> Option<Self> {
-        let (bx, wx, gx) = axis(
-            kernel,
-            (position.x - origin.x) / h,
-            h,
-            half_size.x,
-            nodes[0],
-        )?;
-        let (by, wy, gy) = axis(
-            kernel,
-            (position.y - origin.y) / h,
-            h,
-            half_size.y,
-            nodes[1],
-        )?;
+        let s = (position - grid.origin) / grid.cell_size;
+        let h = grid.cell_size;
+        let (bx, wx, gx) = axis(kernel, s.x, h, half_size.x, grid.nodes[0], grid.walls[0])?;
+        let (by, wy, gy) = axis(kernel, s.y, h, half_size.y, grid.nodes[1], grid.walls[1])?;
         Some(Self {
             base: [bx, by],
             wx,
@@ -148,25 +145,33 @@ impl Stencil {
     }
 }
 
+/// Largest weight a node beyond an open grid edge may receive and still be
+/// dropped: a domain ending exactly on the edge gives such a node a weight of
+/// order (round-off)² ≈ 1e-32; a domain crossing it by 1e-6 of a cell, 1e-12.
+const ROUND_OFF_WEIGHT: Real = 1e-20;
+
 /// One direction of a stencil: the first node index, weights and derivatives.
-/// `s` is the point coordinate in cell units from the grid origin.
+/// `s` is the point coordinate in cell units from the grid origin; `walls`
+/// says whether the low and high edges are walls (see [`StencilGrid::walls`]).
 fn axis<K: Kernel>(
     kernel: K,
     s: Real,
     h: Real,
     half_size: Real,
     nodes: usize,
+    walls: [bool; 2],
 ) -> Option<(u32, [Real; 3], [Real; 3])> {
-    if !s.is_finite() || nodes < 3 {
+    let last_node = nodes as i64 - 1;
+    if !(0.0..=last_node as Real).contains(&s) || nodes < 3 {
         return None;
     }
     // The three nodes nearest the point cover every kernel's support
     // (support radius at most 1.5 cells).
     let first = (s - 0.5).floor() as i64;
     let eval = |node: i64| kernel.eval((s - node as Real) * h, h, half_size);
-    let last_node = nodes as i64 - 1;
     for node in first..first + 3 {
-        if (node < 0 || node > last_node) && eval(node).0 != 0.0 {
+        let beyond_open_edge = (node < 0 && !walls[0]) || (node > last_node && !walls[1]);
+        if beyond_open_edge && eval(node).0 > ROUND_OFF_WEIGHT {
             return None;
         }
     }
@@ -185,6 +190,12 @@ mod tests {
 
     const H: Real = 0.1;
     const NODES: [usize; 2] = [21, 21];
+    const OPEN: StencilGrid = StencilGrid {
+        origin: DVec2::ZERO,
+        cell_size: H,
+        nodes: NODES,
+        walls: [[false; 2]; 2],
+    };
     const KINDS: [ShapeFunction; 3] = [
         ShapeFunction::Linear,
         ShapeFunction::UGimp,
@@ -201,9 +212,7 @@ mod tests {
     }
 
     fn sums(kind: ShapeFunction, p: DVec2, half: DVec2) -> (Real, DVec2, DVec2, DMat2Sum) {
-        let st = kind
-            .stencil(p, half, DVec2::ZERO, H, NODES)
-            .expect("inside the grid");
+        let st = kind.stencil(p, half, &OPEN).expect("inside the grid");
         let (mut s, mut g, mut x) = (0.0, DVec2::ZERO, DVec2::ZERO);
         let mut gx = DMat2Sum::default();
         st.for_each_node(NODES[0], |node, w, grad| {
@@ -271,13 +280,9 @@ mod tests {
         for kind in KINDS {
             for p in positions() {
                 let half = DVec2::splat(H / 4.0);
-                let st = kind.stencil(p, half, DVec2::ZERO, H, NODES).unwrap();
-                let plus = kind
-                    .stencil(p + DVec2::X * eps, half, DVec2::ZERO, H, NODES)
-                    .unwrap();
-                let minus = kind
-                    .stencil(p - DVec2::X * eps, half, DVec2::ZERO, H, NODES)
-                    .unwrap();
+                let st = kind.stencil(p, half, &OPEN).unwrap();
+                let plus = kind.stencil(p + DVec2::X * eps, half, &OPEN).unwrap();
+                let minus = kind.stencil(p - DVec2::X * eps, half, &OPEN).unwrap();
                 // The hat's derivative jumps at nodes: skip differences that straddle one.
                 let on_node = ((p.x / H) - (p.x / H).round()).abs() * H < 2.0 * eps;
                 if plus.base != minus.base || (kind == ShapeFunction::Linear && on_node) {
@@ -301,24 +306,44 @@ mod tests {
         // A GIMP domain that crosses the left grid edge.
         assert!(
             ShapeFunction::UGimp
-                .stencil(DVec2::new(0.01, 1.0), half, DVec2::ZERO, H, NODES)
+                .stencil(DVec2::new(0.01, 1.0), half, &OPEN)
                 .is_none()
         );
         // A GIMP domain that touches the edge from inside is fine.
         assert!(
             ShapeFunction::UGimp
-                .stencil(DVec2::new(0.025, 1.0), half, DVec2::ZERO, H, NODES)
+                .stencil(DVec2::new(0.025, 1.0), half, &OPEN)
                 .is_some()
         );
         // The B-spline needs a node beyond the edge for a point in the first cell.
         assert!(
             ShapeFunction::QuadraticBSpline
-                .stencil(DVec2::new(0.025, 1.0), half, DVec2::ZERO, H, NODES)
+                .stencil(DVec2::new(0.025, 1.0), half, &OPEN)
                 .is_none()
         );
         assert!(
             ShapeFunction::Linear
-                .stencil(DVec2::new(-0.01, 1.0), half, DVec2::ZERO, H, NODES)
+                .stencil(DVec2::new(-0.01, 1.0), half, &OPEN)
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn a_domain_may_press_into_a_wall_but_a_point_may_not_cross_it() {
+        let half = DVec2::splat(H / 4.0);
+        let walled = StencilGrid {
+            walls: [[true, false], [false, false]],
+            ..OPEN
+        };
+        let st = ShapeFunction::UGimp
+            .stencil(DVec2::new(0.024, 1.0), half, &walled)
+            .unwrap();
+        // The node beyond the wall (weight 0.001²/(4·0.1·0.025) = 1e-4 of the x weight) is dropped.
+        let sum: Real = st.wx.iter().sum();
+        assert!((sum - (1.0 - 1e-4)).abs() < 1e-12, "{sum}");
+        assert!(
+            ShapeFunction::UGimp
+                .stencil(DVec2::new(-0.001, 1.0), half, &walled)
                 .is_none()
         );
     }

@@ -1,0 +1,97 @@
+//! The standard throughput benchmark: an elastic block settling under
+//! gravity on a fixed base, sized by its number of points.
+
+use crate::materials::{LinearElastic, MaterialModel};
+use crate::math::{DVec2, Real};
+use crate::resources::{EdgeCondition, EdgeConditions, Settings};
+use crate::scene::{
+    BodySpec, GridSpec, InitialVelocity, MaterialSpec, OutputSpec, Scene, Shape, TimeSpec,
+};
+use crate::simulation::{Simulation, StepError};
+use std::time::Instant;
+
+/// A square elastic block of about `points` points (2 × 2 per cell, 0.01 m
+/// cells) resting on the fixed base of a grid two cells wider on each side.
+pub fn elastic_block_scene(points: usize) -> Scene {
+    let side_cells = ((points as Real / 4.0).sqrt().round() as usize).max(1);
+    let h = 0.01;
+    let side = side_cells as Real * h;
+    Scene {
+        name: Some(format!("bench_block_{points}")),
+        grid: GridSpec {
+            origin: DVec2::ZERO,
+            cell_size: h,
+            cells: (side_cells + 4, side_cells + 4),
+            edges: EdgeConditions {
+                bottom: EdgeCondition::Fixed,
+                ..Default::default()
+            },
+        },
+        time: TimeSpec { dt: 1e-5, end: 1.0 },
+        gravity: DVec2::new(0.0, -9.81),
+        settings: Settings::default(),
+        materials: vec![MaterialSpec {
+            name: "elastic".into(),
+            density: 2000.0,
+            model: MaterialModel::LinearElastic(LinearElastic {
+                youngs_modulus: 1e7,
+                poisson_ratio: 0.3,
+            }),
+        }],
+        bodies: vec![BodySpec {
+            name: "block".into(),
+            material: "elastic".into(),
+            shape: Shape::Rectangle {
+                min: DVec2::new(2.0 * h, 0.0),
+                max: DVec2::new(2.0 * h + side, side),
+            },
+            points_per_cell: 2,
+            velocity: InitialVelocity::default(),
+            initial_stress: None,
+            constraints: Vec::new(),
+        }],
+        probes: Vec::new(),
+        output: OutputSpec::default(),
+    }
+}
+
+/// The measured throughput of a run of `steps` steps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Throughput {
+    /// Number of material points.
+    pub points: usize,
+    /// Steps timed.
+    pub steps: u64,
+    /// Wall-clock seconds of stepping (building the scene excluded).
+    pub seconds: Real,
+}
+
+impl Throughput {
+    /// Particle-updates per second: points × steps / seconds.
+    pub fn updates_per_second(&self) -> Real {
+        self.points as Real * self.steps as Real / self.seconds
+    }
+}
+
+/// Steps `sim` `steps` times after `warmup` untimed steps (which size every
+/// scratch buffer) and times the stepping.
+pub fn measure(sim: &mut Simulation, warmup: u64, steps: u64) -> Result<Throughput, StepError> {
+    for _ in 0..warmup {
+        sim.step()?;
+    }
+    let points = sim
+        .bodies()
+        .iter()
+        .filter_map(|(e, _)| sim.points(*e))
+        .map(|p| p.len())
+        .sum();
+    let start = Instant::now();
+    for _ in 0..steps {
+        sim.step()?;
+    }
+    Ok(Throughput {
+        points,
+        steps,
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
