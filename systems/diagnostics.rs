@@ -49,7 +49,7 @@ fn first_bad_field(points: &MaterialPoints, p: usize) -> Option<(&'static str, S
         Some(("velocity", format!("is {}", points.velocity[p])))
     } else if !points.stress[p].is_finite() {
         Some(("stress", format!("is {:?}", points.stress[p].to_array())))
-    } else if !(points.volume[p] > 0.0) {
+    } else if points.volume[p].is_nan() || points.volume[p] <= 0.0 {
         Some((
             "volume",
             format!("is {:e} (inverted deformation gradient)", points.volume[p]),
@@ -76,7 +76,7 @@ pub fn record_probes_and_energy(
     mut order: Local<Vec<(BodyIndex, Entity)>>,
     bodies: Query<(Entity, &BodyIndex, &MaterialPoints, &Material)>,
 ) {
-    if clock.step % probes.every.max(1) != 0 {
+    if !clock.step.is_multiple_of(probes.every.max(1)) {
         return;
     }
     probes.record(clock.time, |entity| bodies.get(entity).ok().map(|b| b.2));

@@ -57,7 +57,7 @@ impl RunOutput {
 
     /// Call after every step: writes a frame when one is due.
     pub fn after_step(&mut self, sim: &mut Simulation) -> std::io::Result<()> {
-        if sim.clock().step % self.frame_every == 0 {
+        if sim.clock().step.is_multiple_of(self.frame_every) {
             self.write_frame(sim)?;
         }
         Ok(())
@@ -132,8 +132,7 @@ impl RunOutput {
     }
 
     fn plot_probes(&self, probes: &Probes) -> std::io::Result<()> {
-        type Pick = fn(&crate::resources::ProbeSample) -> Real;
-        let groups: [(&str, &str, [(&str, Pick); 3]); 3] = [
+        let groups: [ProbePlot; 3] = [
             (
                 "velocity",
                 "velocity (m/s)",
@@ -238,6 +237,12 @@ impl FrameBuffers {
         }
     }
 }
+
+/// A probe quantity: its name in the legend and how to read it from a sample.
+type ProbeCurve = (&'static str, fn(&crate::resources::ProbeSample) -> Real);
+
+/// One PNG per probe: file suffix, axis label and three curves.
+type ProbePlot = (&'static str, &'static str, [ProbeCurve; 3]);
 
 /// A probe name made safe for a file name.
 fn file_safe(name: &str) -> String {

@@ -1,0 +1,86 @@
+//! `mpdem run` writes every output; `mpdem check` validates.
+
+mod common;
+
+use std::process::Command;
+
+fn mpdem(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_mpdem"))
+        .args(args)
+        .output()
+        .expect("mpdem runs")
+}
+
+#[test]
+fn run_writes_csv_vtk_and_png_outputs() {
+    // The wave scene shortened to 0.05 s (500 steps) to keep the test fast.
+    let base = std::env::temp_dir().join(format!("mpdem-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&base).unwrap();
+    let scene = base.join("wave_short.ron");
+    let text = std::fs::read_to_string(common::scene_path("wave_1d.ron")).unwrap();
+    std::fs::write(&scene, text.replacen("end: 1.0", "end: 0.05", 1)).unwrap();
+    let out = base.join("out");
+    let result = mpdem(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--quiet",
+        "--threads",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        result.status.success(),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&result.stdout);
+    assert!(stdout.contains("state hash"), "{stdout}");
+    for file in [
+        "probes.csv",
+        "energy.csv",
+        "points.pvd",
+        "snapshot.png",
+        "energy.png",
+        "probe_midpoint_velocity.png",
+        "probe_midpoint_displacement.png",
+        "probe_midpoint_stress.png",
+        "vtk/points_00000.vtu",
+        "vtk/points_00005.vtu",
+    ] {
+        assert!(out.join(file).is_file(), "{file} missing");
+    }
+    let probes = std::fs::read_to_string(out.join("probes.csv")).unwrap();
+    assert_eq!(
+        probes.lines().count(),
+        1 + 501,
+        "header + one row per step and step 0"
+    );
+    let pvd = std::fs::read_to_string(out.join("points.pvd")).unwrap();
+    assert_eq!(
+        pvd.matches("<DataSet").count(),
+        6,
+        "frames at 0, 0.01, ..., 0.05 s"
+    );
+    std::fs::remove_dir_all(&base).ok();
+}
+
+#[test]
+fn check_accepts_every_shipped_scene() {
+    for scene in ["wave_1d.ron", "elastic_column.ron"] {
+        let path = common::scene_path(scene);
+        let result = mpdem(&["check", path.to_str().unwrap()]);
+        assert!(
+            result.status.success(),
+            "{scene}: {}",
+            String::from_utf8_lossy(&result.stderr)
+        );
+        assert!(String::from_utf8_lossy(&result.stdout).contains(": ok"));
+    }
+    let missing = mpdem(&["check", "no/such/scene.ron"]);
+    assert!(!missing.status.success());
+    assert!(
+        String::from_utf8_lossy(&missing.stderr)
+            .contains("no/such/scene.ron: cannot read the scene")
+    );
+}

@@ -1,0 +1,44 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)] // each test binary uses a different subset
+
+use mpdem::prelude::*;
+use std::path::PathBuf;
+
+/// Path of a file in `scenes/`.
+pub fn scene_path(file: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(file)
+}
+
+/// Loads and validates a scene of `scenes/`.
+pub fn load_scene(file: &str) -> Scene {
+    Scene::load(&scene_path(file)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Builds and runs a scene to its end.
+pub fn run_scene(scene: &Scene) -> Simulation {
+    let mut sim = Simulation::from_scene(scene).unwrap_or_else(|e| panic!("{e}"));
+    sim.run().unwrap_or_else(|e| panic!("{e}"));
+    sim
+}
+
+/// The samples of the probe named `name`.
+pub fn probe_samples(sim: &Simulation, name: &str) -> Vec<mpdem::resources::ProbeSample> {
+    let probes = sim.world().resource::<Probes>();
+    let index = probes
+        .probes
+        .iter()
+        .position(|p| p.name == name)
+        .expect("probe exists");
+    probes.series(index).copied().collect()
+}
+
+/// Runs `f` on a rayon pool of `threads` workers.
+pub fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("thread pool")
+        .install(f)
+}

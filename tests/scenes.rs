@@ -1,0 +1,165 @@
+//! Every scene in `scenes/` is valid; bad input is refused with the file,
+//! line and column and what was expected, and nothing is written.
+
+mod common;
+
+use mpdem::prelude::*;
+use mpdem::scene::SceneError;
+use std::path::Path;
+
+#[test]
+fn every_shipped_scene_is_valid() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut count = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "ron") {
+            let sim = Simulation::from_scene_file(&path).unwrap_or_else(|e| panic!("{e}"));
+            assert!(
+                sim.warnings().is_empty(),
+                "{}: {:?}",
+                path.display(),
+                sim.warnings()
+            );
+            count += 1;
+        }
+    }
+    assert!(count >= 2);
+}
+
+/// The wave scene with `from` replaced by `to`, parsed as `bad.ron`.
+fn parse_edited(from: &str, to: &str) -> SceneError {
+    let text = std::fs::read_to_string(common::scene_path("wave_1d.ron")).unwrap();
+    assert!(
+        text.contains(from),
+        "fixture text '{from}' not in wave_1d.ron"
+    );
+    let edited = text.replacen(from, to, 1);
+    Scene::parse(&edited, Path::new("bad.ron")).expect_err("bad scene accepted")
+}
+
+/// 1-based line of the first occurrence of `needle` in the edited wave scene.
+fn line_of(from: &str, to: &str, needle: &str) -> usize {
+    let text = std::fs::read_to_string(common::scene_path("wave_1d.ron"))
+        .unwrap()
+        .replacen(from, to, 1);
+    text[..text.find(needle).unwrap()].matches('\n').count() + 1
+}
+
+fn assert_error(error: SceneError, line: usize, expected: &str) {
+    let message = error.to_string();
+    assert!(
+        message.starts_with(&format!("bad.ron:{line}:")),
+        "wrong place: {message}"
+    );
+    assert!(
+        message.contains(expected),
+        "'{message}' does not say '{expected}'"
+    );
+}
+
+#[test]
+fn non_positive_density_is_refused() {
+    let e = parse_edited("density: 1000.0", "density: -5.0");
+    assert_error(
+        e,
+        line_of("density: 1000.0", "density: -5.0", "density: -5.0"),
+        "expected a finite value > 0, got -5",
+    );
+}
+
+#[test]
+fn incompressible_poisson_ratio_is_refused() {
+    let e = parse_edited("poisson_ratio: 0.0", "poisson_ratio: 0.5");
+    assert_error(
+        e,
+        line_of(
+            "poisson_ratio: 0.0",
+            "poisson_ratio: 0.5",
+            "poisson_ratio: 0.5",
+        ),
+        "Poisson's ratio in (-1, 0.5), got 0.5",
+    );
+}
+
+#[test]
+fn non_positive_time_step_is_refused() {
+    let e = parse_edited("dt: 1e-4", "dt: 0.0");
+    assert_error(
+        e,
+        line_of("dt: 1e-4", "dt: 0.0", "dt: 0.0"),
+        "expected a finite value > 0, got 0",
+    );
+}
+
+#[test]
+fn unknown_fields_are_refused() {
+    let e = parse_edited("points_per_cell: 2", "points_per_cel: 2");
+    assert_error(
+        e,
+        line_of("points_per_cell: 2", "points_per_cel: 2", "points_per_cel"),
+        "points_per_cel",
+    );
+}
+
+#[test]
+fn unknown_material_names_are_refused() {
+    let from = "material: \"bar\"";
+    let e = parse_edited(from, "material: \"steel\"");
+    assert_error(
+        e,
+        line_of(from, "material: \"steel\"", "material: \"steel\""),
+        "unknown material 'steel'",
+    );
+}
+
+#[test]
+fn bodies_outside_the_grid_are_refused() {
+    let from = "max: (1.0, 0.01)";
+    let e = parse_edited(from, "max: (1.5, 0.01)");
+    assert_error(
+        e,
+        line_of(from, "max: (1.5, 0.01)", "shape:"),
+        "is not inside the grid",
+    );
+}
+
+#[test]
+fn a_time_step_above_the_cfl_limit_warns_with_the_limit() {
+    let mut scene = common::load_scene("wave_1d.ron");
+    scene.time.dt = 1e-3;
+    let sim = Simulation::from_scene(&scene).unwrap();
+    assert_eq!(sim.warnings().len(), 1);
+    assert!(
+        sim.warnings()[0].contains("CFL limit h / c = 5e-4 s"),
+        "{}",
+        sim.warnings()[0]
+    );
+}
+
+#[test]
+fn a_run_of_a_bad_scene_writes_nothing() {
+    let dir = std::env::temp_dir().join(format!("mpdem-bad-{}", std::process::id()));
+    let scene = dir.with_extension("ron");
+    let text = std::fs::read_to_string(common::scene_path("wave_1d.ron")).unwrap();
+    std::fs::write(&scene, text.replacen("density: 1000.0", "density: 0.0", 1)).unwrap();
+    let out = dir.join("out");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_mpdem"))
+        .args([
+            "run",
+            scene.to_str().unwrap(),
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(!status.status.success());
+    let stderr = String::from_utf8_lossy(&status.stderr);
+    assert!(
+        stderr.contains(&format!("{}:", scene.display())) && stderr.contains("> 0"),
+        "{stderr}"
+    );
+    assert!(!out.exists(), "output written for a bad scene");
+    std::fs::remove_file(&scene).ok();
+}
