@@ -67,8 +67,8 @@ impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
                 for (k, stencil) in chunk.iter().enumerate() {
                     let carried = per_point(first + k);
                     let origin = [patch.origin[0] as u32, patch.origin[1] as u32];
-                    stencil.for_each_node_from(origin, patch.width, |i, w, g| {
-                        patch.values[i] += per_node(&carried, w, g);
+                    stencil.scatter(&mut patch.values, origin, patch.width, |value, w, g| {
+                        *value += per_node(&carried, w, g);
                     });
                 }
             });
@@ -133,7 +133,7 @@ mod tests {
         let h = 0.1;
         let grid = StencilGrid {
             origin: DVec2::ZERO,
-            cell_size: h,
+            inv_cell_size: 1.0 / h,
             nodes,
             walls: [[false; 2]; 2],
         };
@@ -168,7 +168,9 @@ mod tests {
         );
         let mut reference = vec![0.0; nodes[0] * nodes[1]];
         for (p, s) in stencils.iter().enumerate() {
-            s.for_each_node(nodes[0], |i, w, _| reference[i] += (1.0 + p as Real) * w);
+            s.scatter(&mut reference, [0, 0], nodes[0], |r, w, _| {
+                *r += (1.0 + p as Real) * w
+            });
         }
         let total: Real = reference.iter().sum();
         for (a, b) in one.iter().zip(&reference) {

@@ -1,6 +1,7 @@
 //! End of the step: finiteness check, clock, probes and energies.
 
 use crate::components::{BodyIndex, BodyName, Material, MaterialPoints};
+use crate::math::Real;
 use crate::resources::{Clock, Diagnostics, EnergyLog, EnergySample, NumericalFailure, Probes};
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -22,10 +23,10 @@ pub fn check_finite(
         .iter()
         .filter_map(|(_, e)| bodies.get(*e).ok().map(|b| (b.1, b.2, b.3)))
     {
-        let first_bad = (0..points.len())
-            .into_par_iter()
-            .with_min_len(MIN_POINTS_PER_TASK)
-            .position_first(|p| first_bad_field(points, p).is_some());
+        if all_finite(points) {
+            continue;
+        }
+        let first_bad = (0..points.len()).position(|p| first_bad_field(points, p).is_some());
         if let Some(p) = first_bad
             && let Some((field, detail)) = first_bad_field(points, p)
         {
@@ -39,6 +40,29 @@ pub fn check_finite(
             });
         }
     }
+}
+
+/// Whether every position, velocity and stress is finite and every volume
+/// positive: one vectorisable pass per column (the common case), the
+/// point-by-point search only runs after a failure.
+fn all_finite(points: &MaterialPoints) -> bool {
+    let min = MIN_POINTS_PER_TASK;
+    points
+        .position
+        .par_iter()
+        .with_min_len(min)
+        .all(|x| x.is_finite())
+        && points
+            .velocity
+            .par_iter()
+            .with_min_len(min)
+            .all(|v| v.is_finite())
+        && points
+            .stress
+            .par_iter()
+            .with_min_len(min)
+            .all(|s| s.is_finite())
+        && points.volume.par_iter().with_min_len(min).all(|v| *v > 0.0)
 }
 
 /// The first broken field of point `p` and what it holds, if any.
@@ -74,6 +98,7 @@ pub fn record_probes_and_energy(
     mut probes: ResMut<Probes>,
     mut energy: ResMut<EnergyLog>,
     mut order: Local<Vec<(BodyIndex, Entity)>>,
+    mut scratch: Local<Vec<(Real, Real)>>,
     bodies: Query<(Entity, &BodyIndex, &MaterialPoints, &Material)>,
 ) {
     if !clock.step.is_multiple_of(probes.every.max(1)) {
@@ -85,7 +110,9 @@ pub fn record_probes_and_energy(
         .iter()
         .filter_map(|(_, e)| bodies.get(*e).ok())
         .map(|b| (b.2, b.3));
-    energy.samples.push(EnergySample::of(clock.time, ordered));
+    energy
+        .samples
+        .push(EnergySample::of(clock.time, ordered, &mut scratch));
 }
 
 /// Fills `order` with the bodies sorted by their scene index, reusing its storage.

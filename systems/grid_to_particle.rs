@@ -35,11 +35,11 @@ pub fn grid_to_particle(
             .into_par_iter()
             .with_min_len(MIN_POINTS_PER_TASK)
             .for_each(|(x, v, stencil)| {
-                let (mut grid_old, mut grid_new) = (DVec2::ZERO, DVec2::ZERO);
-                stencil.for_each_node(row_len, |i, w, _| {
-                    grid_old += w * nodes[i].velocity;
-                    grid_new += w * nodes[i].velocity_new;
-                });
+                let zero = (DVec2::ZERO, DVec2::ZERO);
+                let (grid_old, grid_new) =
+                    stencil.gather(nodes, row_len, zero, |(old, new), node, w, _| {
+                        (old + w * node.velocity, new + w * node.velocity_new)
+                    });
                 *x += (0.5 * (grid_old + grid_new) - 0.5 * beta * (*v - grid_old)) * dt;
                 *v = (1.0 - beta) * (*v + grid_new - grid_old) + beta * grid_new;
             });

@@ -5,7 +5,7 @@ use crate::components::{BodyName, GridLayer, MassMomentumForce, MaterialPoints, 
 use crate::math::DVec2;
 use crate::resources::{Clock, Diagnostics, Gravity, Grid, NumericalFailure, Settings};
 use crate::shape_functions::Stencil;
-use crate::transfer::{MIN_NODES_PER_TASK, MIN_POINTS_PER_TASK};
+use crate::transfer::MIN_NODES_PER_TASK;
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
@@ -39,24 +39,8 @@ pub fn particle_to_grid(
             ..
         } = &mut *scratch;
         stencils.resize(points.len(), Stencil::default());
-        let outside = stencils
-            .par_iter_mut()
-            .zip(points.position.par_iter().zip(&points.half_size))
-            .with_min_len(MIN_POINTS_PER_TASK)
-            .enumerate()
-            .filter_map(|(p, (stencil, (x, half)))| {
-                match kernel.stencil(*x, *half, &stencil_grid) {
-                    Some(s) => {
-                        *stencil = s;
-                        None
-                    }
-                    None => {
-                        *stencil = Stencil::default();
-                        Some(p)
-                    }
-                }
-            })
-            .min();
+        let outside =
+            kernel.fill_stencils(&points.position, &points.half_size, &stencil_grid, stencils);
         if let Some(p) = outside {
             diagnostics.report(NumericalFailure {
                 step: clock.step + 1,

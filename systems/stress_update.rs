@@ -83,16 +83,14 @@ impl StrainStep<'_> {
 
     #[inline(always)]
     fn velocity_gradient(&self, stencil: &Stencil) -> DMat2 {
-        let mut l = DMat2::ZERO;
-        stencil.for_each_node(self.row_len, |i, _, g| {
-            let node = &self.nodes[i];
-            let v = if self.after_momentum {
+        let after = self.after_momentum;
+        stencil.gather(self.nodes, self.row_len, DMat2::ZERO, |l, node, _, g| {
+            let v = if after {
                 node.velocity_new
             } else {
                 node.velocity
             };
-            l += outer(v, g);
-        });
-        l
+            l + outer(v, g)
+        })
     }
 }

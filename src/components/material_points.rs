@@ -2,7 +2,9 @@
 
 use crate::materials::ConstitutiveModel;
 use crate::math::{DMat2, DVec2, Real, SymTensor};
+use crate::transfer::CHUNK_POINTS;
 use bevy_ecs::prelude::Component;
+use rayon::prelude::*;
 
 /// The initial state of one point, used to fill the columns.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -87,16 +89,31 @@ impl MaterialPoints {
         self.mass.iter().sum()
     }
 
-    /// Kinetic energy Σ ½ m |V|² and stored strain energy Σ w(σ) V (J/m),
-    /// summed in point order so the result never depends on the thread count.
-    pub fn energies(&self, model: &dyn ConstitutiveModel) -> (Real, Real) {
-        let mut kinetic = 0.0;
-        let mut strain = 0.0;
-        for p in 0..self.len() {
-            kinetic += 0.5 * self.mass[p] * self.velocity[p].length_squared();
-            strain += model.stored_energy_density(&self.stress[p]) * self.volume[p];
-        }
-        (kinetic, strain)
+    /// Kinetic energy Σ ½ m |V|² and stored strain energy Σ w(σ) V (J/m).
+    /// Points are summed in fixed chunks of [`CHUNK_POINTS`] in parallel and
+    /// the chunk sums added in order, so the result never depends on the
+    /// thread count.
+    /// `chunk_sums` is scratch space, reused so that recording allocates nothing.
+    pub fn energies(
+        &self,
+        model: &dyn ConstitutiveModel,
+        chunk_sums: &mut Vec<(Real, Real)>,
+    ) -> (Real, Real) {
+        (0..self.len().div_ceil(CHUNK_POINTS))
+            .into_par_iter()
+            .map(|c| {
+                let range = c * CHUNK_POINTS..((c + 1) * CHUNK_POINTS).min(self.len());
+                range.fold((0.0, 0.0), |(kinetic, strain), p| {
+                    (
+                        kinetic + 0.5 * self.mass[p] * self.velocity[p].length_squared(),
+                        strain + model.stored_energy_density(&self.stress[p]) * self.volume[p],
+                    )
+                })
+            })
+            .collect_into_vec(chunk_sums);
+        chunk_sums
+            .iter()
+            .fold((0.0, 0.0), |(k, s), (dk, ds)| (k + dk, s + ds))
     }
 
     /// Total linear momentum Σ m_p V_p.

@@ -62,7 +62,7 @@ impl Grid {
         let wall = |c: EdgeCondition| c != EdgeCondition::Free;
         StencilGrid {
             origin: self.origin,
-            cell_size: self.cell_size,
+            inv_cell_size: 1.0 / self.cell_size,
             nodes: self.nodes(),
             walls: [
                 [wall(self.edges.left), wall(self.edges.right)],

@@ -84,10 +84,12 @@ pub struct EnergySample {
 }
 
 impl EnergySample {
-    /// The energies of `bodies` (in scene order) at `time`.
+    /// The energies of `bodies` (in scene order) at `time`; `scratch` is
+    /// reused between calls (see [`MaterialPoints::energies`]).
     pub fn of<'a>(
         time: Real,
         bodies: impl Iterator<Item = (&'a MaterialPoints, &'a Material)>,
+        scratch: &mut Vec<(Real, Real)>,
     ) -> Self {
         let mut sample = Self {
             time,
@@ -95,7 +97,7 @@ impl EnergySample {
             strain: 0.0,
         };
         for (points, material) in bodies {
-            let (kinetic, strain) = points.energies(material.model.as_model());
+            let (kinetic, strain) = points.energies(material.model.as_model(), scratch);
             sample.kinetic += kinetic;
             sample.strain += strain;
         }

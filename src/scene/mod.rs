@@ -182,8 +182,9 @@ pub struct OutputSpec {
     /// Simulated time between VTK frames (s). Default: end / 100, a hundred
     /// frames whatever the duration.
     pub frame_interval: Option<Real>,
-    /// Simulated time between probe and energy samples (s). Default: every
-    /// step, since a sample costs little and plots want full resolution.
+    /// Simulated time between probe and energy samples (s). Default: end /
+    /// 1000, a thousand samples, smooth plots at a negligible cost; set it to
+    /// `time.dt` to sample every step.
     pub probe_interval: Option<Real>,
 }
 

@@ -27,8 +27,10 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         dt: scene.time.dt,
         end: scene.time.end,
     };
-    let every =
-        |interval: Option<Real>| interval.map_or(1, |t| ((t / clock.dt).round() as u64).max(1));
+    let every = |interval: Option<Real>| {
+        let interval = interval.unwrap_or(clock.end / 1000.0);
+        ((interval / clock.dt).round() as u64).max(1)
+    };
     let mut warnings = Vec::new();
     let mut bodies = Vec::with_capacity(scene.bodies.len());
     for (index, spec) in scene.bodies.iter().enumerate() {
@@ -108,6 +110,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         bodies
             .iter()
             .filter_map(|e| Some((world.get::<MaterialPoints>(*e)?, world.get::<Material>(*e)?))),
+        &mut Vec::new(),
     );
     world.insert_resource(grid);
     world.insert_resource(clock);

@@ -16,14 +16,17 @@ pub use linear::LinearHat;
 pub use ugimp::UGimp;
 
 use crate::math::{DVec2, Real};
+use crate::transfer::MIN_POINTS_PER_TASK;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-/// A one-dimensional shape function.
+/// A one-dimensional shape function, in cell units.
 pub trait Kernel: Copy + Send + Sync {
-    /// Weight and its derivative with respect to the point position, for a
-    /// point at signed distance `d = x_p − x_i` from a node, cell size `h` and
-    /// particle domain half-size `half_size` (used by GIMP only).
-    fn eval(&self, d: Real, h: Real, half_size: Real) -> (Real, Real);
+    /// Weight and its derivative with respect to ξ, for a point at signed
+    /// distance ξ = (x_p − x_i)/h from a node, with particle domain
+    /// half-size `half` = l/h and its inverse `inv_half` (GIMP only; the
+    /// inverse is passed so the hot loop does no division).
+    fn eval(&self, xi: Real, half: Real, inv_half: Real) -> (Real, Real);
 }
 
 /// The shape function chosen for a simulation (scene `settings.shape_function`).
@@ -51,6 +54,23 @@ impl ShapeFunction {
         }
     }
 
+    /// Computes the stencil of every point into `out` (same length as the
+    /// columns), in parallel, and returns the index of the first point that
+    /// has left the grid (its stencil is then empty), if any.
+    pub fn fill_stencils(
+        self,
+        positions: &[DVec2],
+        half_sizes: &[DVec2],
+        grid: &StencilGrid,
+        out: &mut [Stencil],
+    ) -> Option<usize> {
+        match self {
+            Self::Linear => fill(LinearHat, positions, half_sizes, grid, out),
+            Self::UGimp => fill(UGimp, positions, half_sizes, grid, out),
+            Self::QuadraticBSpline => fill(QuadraticBSpline, positions, half_sizes, grid, out),
+        }
+    }
+
     /// Distance from a body's outline to the grid edge that this kernel needs
     /// so that no weight falls outside the grid, as a multiple of the cell size.
     pub fn required_margin_cells(self) -> Real {
@@ -61,13 +81,42 @@ impl ShapeFunction {
     }
 }
 
+/// [`ShapeFunction::fill_stencils`] for one kernel, monomorphised so the
+/// loop has no dispatch inside it.
+fn fill<K: Kernel>(
+    kernel: K,
+    positions: &[DVec2],
+    half_sizes: &[DVec2],
+    grid: &StencilGrid,
+    out: &mut [Stencil],
+) -> Option<usize> {
+    out.par_iter_mut()
+        .zip(positions.par_iter().zip(half_sizes))
+        .with_min_len(MIN_POINTS_PER_TASK)
+        .enumerate()
+        .map(
+            |(p, (stencil, (x, half)))| match Stencil::new(kernel, *x, *half, grid) {
+                Some(s) => {
+                    *stencil = s;
+                    usize::MAX
+                }
+                None => {
+                    *stencil = Stencil::default();
+                    p
+                }
+            },
+        )
+        .min()
+        .filter(|&p| p != usize::MAX)
+}
+
 /// What a stencil needs to know of the grid.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StencilGrid {
     /// Position of node (0, 0) (m).
     pub origin: DVec2,
-    /// Cell size h (m).
-    pub cell_size: Real,
+    /// Inverse cell size 1/h (1/m), so stencils need no division by h.
+    pub inv_cell_size: Real,
     /// Nodes along x and y (each ≥ 3).
     pub nodes: [usize; 2],
     /// `walls[axis][side]`: whether the edge (side 0 low, 1 high) is a wall
@@ -97,16 +146,19 @@ pub struct Stencil {
 
 impl Stencil {
     /// Builds the stencil for one kernel; `None` when the point has left the grid.
+    #[inline(always)]
     pub fn new<K: Kernel>(
         kernel: K,
         position: DVec2,
         half_size: DVec2,
         grid: &StencilGrid,
     ) -> Option<Self> {
-        let s = (position - grid.origin) / grid.cell_size;
-        let h = grid.cell_size;
-        let (bx, wx, gx) = axis(kernel, s.x, h, half_size.x, grid.nodes[0], grid.walls[0])?;
-        let (by, wy, gy) = axis(kernel, s.y, h, half_size.y, grid.nodes[1], grid.walls[1])?;
+        let inv_h = grid.inv_cell_size;
+        let s = (position - grid.origin) * inv_h;
+        let half = half_size * inv_h;
+        let (bx, wx, gx) = axis(kernel, s.x, half.x, grid.nodes[0], grid.walls[0])?;
+        let (by, wy, gy) = axis(kernel, s.y, half.y, grid.nodes[1], grid.walls[1])?;
+        let (gx, gy) = (gx.map(|g| g * inv_h), gy.map(|g| g * inv_h));
         Some(Self {
             base: [bx, by],
             wx,
@@ -116,30 +168,57 @@ impl Stencil {
         })
     }
 
-    /// Calls `f(node_index, weight, gradient)` for the nine stencil nodes, where
-    /// `node_index` is the row-major index into a grid with `row_len` nodes per row.
+    /// Folds `f(acc, value, S_ip, G_ip)` over the nine stencil nodes of a
+    /// row-major field `values` with `row_len` nodes per row.
     #[inline(always)]
-    pub fn for_each_node(&self, row_len: usize, f: impl FnMut(usize, Real, DVec2)) {
-        self.for_each_node_from([0, 0], row_len, f);
+    pub fn gather<T, A>(
+        &self,
+        values: &[T],
+        row_len: usize,
+        mut acc: A,
+        mut f: impl FnMut(A, &T, Real, DVec2) -> A,
+    ) -> A {
+        let column = self.base[0] as usize;
+        for b in 0..3 {
+            let first = (self.base[1] as usize + b) * row_len + column;
+            let row = values[first..first + 3]
+                .iter()
+                .zip(self.wx.iter().zip(&self.gx));
+            for (value, (wx, gx)) in row {
+                acc = f(
+                    acc,
+                    value,
+                    wx * self.wy[b],
+                    DVec2::new(gx * self.wy[b], wx * self.gy[b]),
+                );
+            }
+        }
+        acc
     }
 
-    /// Like [`Stencil::for_each_node`], with indices into a rectangle of nodes
-    /// whose lower-left node is grid node `origin` and whose rows are `row_len` long.
+    /// Calls `f(value, S_ip, G_ip)` on the nine stencil nodes of a row-major
+    /// rectangle `values` of nodes whose lower-left node is grid node
+    /// `origin` and whose rows are `row_len` long.
     #[inline(always)]
-    pub fn for_each_node_from(
+    pub fn scatter<T>(
         &self,
+        values: &mut [T],
         origin: [u32; 2],
         row_len: usize,
-        mut f: impl FnMut(usize, Real, DVec2),
+        mut f: impl FnMut(&mut T, Real, DVec2),
     ) {
         let column = (self.base[0] - origin[0]) as usize;
         for b in 0..3 {
-            let row = (self.base[1] - origin[1]) as usize + b;
-            let first = row * row_len + column;
-            for a in 0..3 {
-                let weight = self.wx[a] * self.wy[b];
-                let gradient = DVec2::new(self.gx[a] * self.wy[b], self.wx[a] * self.gy[b]);
-                f(first + a, weight, gradient);
+            let first = ((self.base[1] - origin[1]) as usize + b) * row_len + column;
+            let row = values[first..first + 3]
+                .iter_mut()
+                .zip(self.wx.iter().zip(&self.gx));
+            for (value, (wx, gx)) in row {
+                f(
+                    value,
+                    wx * self.wy[b],
+                    DVec2::new(gx * self.wy[b], wx * self.gy[b]),
+                );
             }
         }
     }
@@ -150,14 +229,15 @@ impl Stencil {
 /// order (round-off)² ≈ 1e-32; a domain crossing it by 1e-6 of a cell, 1e-12.
 const ROUND_OFF_WEIGHT: Real = 1e-20;
 
-/// One direction of a stencil: the first node index, weights and derivatives.
-/// `s` is the point coordinate in cell units from the grid origin; `walls`
-/// says whether the low and high edges are walls (see [`StencilGrid::walls`]).
+/// One direction of a stencil: the first node index, weights and
+/// derivatives (per cell). `s` is the point coordinate in cells from the grid
+/// origin, `half` the domain half-size in cells; `walls` says whether the low
+/// and high edges are walls (see [`StencilGrid::walls`]).
+#[inline(always)]
 fn axis<K: Kernel>(
     kernel: K,
     s: Real,
-    h: Real,
-    half_size: Real,
+    half: Real,
     nodes: usize,
     walls: [bool; 2],
 ) -> Option<(u32, [Real; 3], [Real; 3])> {
@@ -166,13 +246,17 @@ fn axis<K: Kernel>(
         return None;
     }
     // The three nodes nearest the point cover every kernel's support
-    // (support radius at most 1.5 cells).
-    let first = (s - 0.5).floor() as i64;
-    let eval = |node: i64| kernel.eval((s - node as Real) * h, h, half_size);
-    for node in first..first + 3 {
-        let beyond_open_edge = (node < 0 && !walls[0]) || (node > last_node && !walls[1]);
-        if beyond_open_edge && eval(node).0 > ROUND_OFF_WEIGHT {
-            return None;
+    // (support radius at most 1.5 cells): floor(s − ½), computed by
+    // truncation since s ≥ 0 (a call to `floor` costs more than the kernel).
+    let first = (s + 0.5) as i64 - 1;
+    let inv_half = 1.0 / half;
+    let eval = |node: i64| kernel.eval(s - node as Real, half, inv_half);
+    if first < 0 || first + 2 > last_node {
+        for node in first..first + 3 {
+            let beyond_open_edge = (node < 0 && !walls[0]) || (node > last_node && !walls[1]);
+            if beyond_open_edge && eval(node).0 > ROUND_OFF_WEIGHT {
+                return None;
+            }
         }
     }
     let base = first.clamp(0, last_node - 2);
@@ -192,7 +276,7 @@ mod tests {
     const NODES: [usize; 2] = [21, 21];
     const OPEN: StencilGrid = StencilGrid {
         origin: DVec2::ZERO,
-        cell_size: H,
+        inv_cell_size: 1.0 / H,
         nodes: NODES,
         walls: [[false; 2]; 2],
     };
@@ -213,16 +297,14 @@ mod tests {
 
     fn sums(kind: ShapeFunction, p: DVec2, half: DVec2) -> (Real, DVec2, DVec2, DMat2Sum) {
         let st = kind.stencil(p, half, &OPEN).expect("inside the grid");
-        let (mut s, mut g, mut x) = (0.0, DVec2::ZERO, DVec2::ZERO);
-        let mut gx = DMat2Sum::default();
-        st.for_each_node(NODES[0], |node, w, grad| {
-            let xi = DVec2::new((node % NODES[0]) as Real * H, (node / NODES[0]) as Real * H);
-            s += w;
-            g += grad;
-            x += w * xi;
-            gx.add(xi, grad);
-        });
-        (s, g, x, gx)
+        let nodes: Vec<DVec2> = (0..NODES[0] * NODES[1])
+            .map(|k| DVec2::new((k % NODES[0]) as Real * H, (k / NODES[0]) as Real * H))
+            .collect();
+        let zero = (0.0, DVec2::ZERO, DVec2::ZERO, DMat2Sum::default());
+        st.gather(&nodes, NODES[0], zero, |(s, g, x, mut gx), xi, w, grad| {
+            gx.add(*xi, grad);
+            (s + w, g + grad, x + w * *xi, gx)
+        })
     }
 
     /// Σ x_i ⊗ G_ip, which must be the identity for linear reproduction.

@@ -5,25 +5,28 @@
 use super::Kernel;
 use crate::math::Real;
 
-/// uGIMP weight S_ip and gradient G_ip (eqs. 9a/9b) for a domain half-size
-/// `l ≤ h/2`. Piecewise:
-/// * |d| < l: 1 − (d² + l²) / (2hl)
-/// * l ≤ |d| ≤ h − l: 1 − |d|/h
-/// * h − l < |d| < h + l: (h + l − |d|)² / (4hl)
+/// uGIMP weight S_ip and its derivative (eqs. 9a/9b) in cell units: ξ is the
+/// distance to the node and λ = l/h ≤ ½ the domain half-size. Piecewise:
+/// * |ξ| < λ: 1 − (ξ² + λ²) / (2λ)
+/// * λ ≤ |ξ| ≤ 1 − λ: 1 − |ξ|
+/// * 1 − λ < |ξ| < 1 + λ: (1 + λ − |ξ|)² / (4λ)
 #[derive(Clone, Copy, Debug, Default)]
 pub struct UGimp;
 
 impl Kernel for UGimp {
     #[inline(always)]
-    fn eval(&self, d: Real, h: Real, l: Real) -> (Real, Real) {
-        let r = d.abs();
-        if r < l {
-            (1.0 - (d * d + l * l) / (2.0 * h * l), -d / (h * l))
-        } else if r <= h - l {
-            (1.0 - r / h, -d.signum() / h)
-        } else if r < h + l {
-            let s = h + l - r;
-            (s * s / (4.0 * h * l), -d.signum() * s / (2.0 * h * l))
+    fn eval(&self, xi: Real, half: Real, inv_half: Real) -> (Real, Real) {
+        let r = xi.abs();
+        if r < half {
+            (
+                1.0 - 0.5 * (xi * xi + half * half) * inv_half,
+                -xi * inv_half,
+            )
+        } else if r <= 1.0 - half {
+            (1.0 - r, -xi.signum())
+        } else if r < 1.0 + half {
+            let s = 1.0 + half - r;
+            (0.25 * s * s * inv_half, -0.5 * xi.signum() * s * inv_half)
         } else {
             (0.0, 0.0)
         }
