@@ -100,7 +100,7 @@ fn check(path: &Path) -> Result<(), String> {
     }
     let clock = sim.clock();
     println!(
-        "{}: ok ({} bodies, {} steps of {:e} s)",
+        "{}: ok (bodies: {}, steps: {} of {:e} s)",
         path.display(),
         scene.bodies.len(),
         clock.total_steps(),
