@@ -27,7 +27,10 @@ fn report(clock: Res<Clock>, bodies: Query<(&BodyName, &MaterialPoints)>) {
         let top = (0..points.len())
             .max_by(|&a, &b| points.position[a].y.total_cmp(&points.position[b].y))
             .map_or(0.0, |p| points.displacement(p).x);
-        println!("t = {:.2} s: '{}' top moved {top:+.3e} m sideways", clock.time, name.0);
+        println!(
+            "t = {:.2} s: '{}' top moved {top:+.3e} m sideways",
+            clock.time, name.0
+        );
     }
 }
 

@@ -90,24 +90,21 @@ fn fill<K: Kernel>(
     grid: &StencilGrid,
     out: &mut [Stencil],
 ) -> Option<usize> {
-    out.par_iter_mut()
-        .zip(positions.par_iter().zip(half_sizes))
-        .with_min_len(MIN_POINTS_PER_TASK)
+    out.par_chunks_mut(MIN_POINTS_PER_TASK)
         .enumerate()
-        .map(
-            |(p, (stencil, (x, half)))| match Stencil::new(kernel, *x, *half, grid) {
-                Some(s) => {
-                    *stencil = s;
-                    usize::MAX
-                }
-                None => {
-                    *stencil = Stencil::default();
-                    p
-                }
-            },
-        )
+        .filter_map(|(c, chunk)| {
+            let first = c * MIN_POINTS_PER_TASK;
+            let columns = positions[first..].iter().zip(&half_sizes[first..]);
+            let mut outside = None;
+            for (k, (stencil, (x, half))) in chunk.iter_mut().zip(columns).enumerate() {
+                *stencil = Stencil::new(kernel, *x, *half, grid).unwrap_or_else(|| {
+                    outside.get_or_insert(first + k);
+                    Stencil::default()
+                });
+            }
+            outside
+        })
         .min()
-        .filter(|&p| p != usize::MAX)
 }
 
 /// What a stencil needs to know of the grid.
