@@ -46,23 +46,18 @@ pub fn check_finite(
 /// positive: one vectorisable pass per column (the common case), the
 /// point-by-point search only runs after a failure.
 fn all_finite(points: &MaterialPoints) -> bool {
-    let min = MIN_POINTS_PER_TASK;
-    points
-        .position
-        .par_iter()
-        .with_min_len(min)
-        .all(|x| x.is_finite())
-        && points
-            .velocity
-            .par_iter()
-            .with_min_len(min)
-            .all(|v| v.is_finite())
-        && points
-            .stress
-            .par_iter()
-            .with_min_len(min)
-            .all(|s| s.is_finite())
-        && points.volume.par_iter().with_min_len(min).all(|v| *v > 0.0)
+    all_in_chunks(&points.position, |x| x.is_finite())
+        && all_in_chunks(&points.velocity, |v| v.is_finite())
+        && all_in_chunks(&points.stress, |s| s.is_finite())
+        && all_in_chunks(&points.volume, |v| *v > 0.0)
+}
+
+/// Whether `ok` holds for every element: chunks in parallel, a plain loop
+/// inside each (rayon's per-element `all` checks a shared flag every item).
+fn all_in_chunks<T: Sync>(column: &[T], ok: impl Fn(&T) -> bool + Sync) -> bool {
+    column
+        .par_chunks(MIN_POINTS_PER_TASK)
+        .all(|chunk| chunk.iter().all(&ok))
 }
 
 /// The first broken field of point `p` and what it holds, if any.
