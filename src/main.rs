@@ -140,7 +140,7 @@ fn run(path: &Path, out: Option<&Path>, quiet: bool) -> Result<(), String> {
     }
     progress.finish_and_clear();
     output
-        .finish(&mut sim)
+        .finish(&mut sim, failure.is_some())
         .map_err(|e| format!("{}: cannot write output: {e}", dir.display()))?;
     if let Some(message) = failure {
         return Err(format!(

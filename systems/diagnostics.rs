@@ -85,18 +85,21 @@ pub fn advance_clock(mut clock: ResMut<Clock>) {
     clock.advance();
 }
 
-/// Records probes and energies every `Probes::every` steps.
+/// Records probes and energies every `Probes::every` steps, unless the step
+/// failed (a broken state is never recorded).
 ///
-/// Reads: `Clock`, `MaterialPoints`, `Material`, `BodyIndex`. Writes: `Probes`, `EnergyLog`.
+/// Reads: `Clock`, `Diagnostics`, `MaterialPoints`, `Material`, `BodyIndex`.
+/// Writes: `Probes`, `EnergyLog`.
 pub fn record_probes_and_energy(
     clock: Res<Clock>,
+    diagnostics: Res<Diagnostics>,
     mut probes: ResMut<Probes>,
     mut energy: ResMut<EnergyLog>,
     mut order: Local<Vec<(BodyIndex, Entity)>>,
     mut scratch: Local<Vec<(Real, Real)>>,
     bodies: Query<(Entity, &BodyIndex, &MaterialPoints, &Material)>,
 ) {
-    if !clock.step.is_multiple_of(probes.every.max(1)) {
+    if diagnostics.failure.is_some() || !clock.step.is_multiple_of(probes.every.max(1)) {
         return;
     }
     probes.record(clock.time, |entity| bodies.get(entity).ok().map(|b| b.2));

@@ -101,17 +101,17 @@ pub fn build_schedule(scheme: UpdateScheme) -> Schedule {
     for pair in MpmSystems::order(scheme).windows(2) {
         schedule.configure_sets(pair[0].before(pair[1]));
     }
-    add_default_systems(&mut schedule);
+    add_default_systems(&mut schedule, scheme);
     schedule
 }
 
 /// Puts every built-in system into its set (the engine's default plugin).
-pub fn add_default_systems(schedule: &mut Schedule) {
+pub fn add_default_systems(schedule: &mut Schedule, scheme: UpdateScheme) {
     schedule.add_systems((
         reset_grid_layers.in_set(MpmSystems::GridReset),
         rebuild_node_constraints.in_set(MpmSystems::Boundary),
         particle_to_grid.in_set(MpmSystems::ParticleToGrid),
-        update_stress.in_set(MpmSystems::StressUpdate),
+        update_stress(scheme).in_set(MpmSystems::StressUpdate),
         solve_nodal_momentum.in_set(MpmSystems::NodalSolve),
         grid_to_particle.in_set(MpmSystems::GridToParticle),
         (check_finite, advance_clock, record_probes_and_energy)

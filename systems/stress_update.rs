@@ -3,7 +3,7 @@
 use crate::components::{GridLayer, GridNode, Material, MaterialPoints, TransferScratch};
 use crate::materials::{ConstitutiveModel, MaterialModel};
 use crate::math::{DMat2, Real, outer, rate_of_deformation, spin};
-use crate::resources::{Clock, Grid, Settings, UpdateScheme};
+use crate::resources::{Clock, Grid, UpdateScheme};
 use crate::shape_functions::Stencil;
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -13,27 +13,31 @@ use rayon::prelude::*;
 /// gradient F ← (I + L Δt) F, volume V = det(F) V⁰, stress from the body's
 /// model with D = sym L and W = skew L, strain ε += D Δt. USF uses the nodal
 /// velocity at the start of the step, USL the updated one; both with the
-/// gradients at x^n.
+/// gradients at x^n. The scheme is fixed here, with the order of the sets,
+/// when the schedule is built.
 ///
-/// Reads: `Grid`, `Settings`, `Clock`, `GridLayer`, `TransferScratch::stencils`, `Material`.
+/// Reads: `Grid`, `Clock`, `GridLayer`, `TransferScratch::stencils`, `Material`.
 /// Writes: `MaterialPoints` (deformation gradient, volume, stress, strain).
 pub fn update_stress(
-    grid: Res<Grid>,
-    settings: Res<Settings>,
-    clock: Res<Clock>,
-    mut bodies: Query<(&Material, &mut MaterialPoints, &GridLayer, &TransferScratch)>,
+    scheme: UpdateScheme,
+) -> impl FnMut(
+    Res<Grid>,
+    Res<Clock>,
+    Query<(&Material, &mut MaterialPoints, &GridLayer, &TransferScratch)>,
 ) {
-    let row_len = grid.nodes()[0];
-    let after_momentum = settings.scheme == UpdateScheme::Usl;
-    for (material, mut points, layer, scratch) in &mut bodies {
-        let step = StrainStep {
-            nodes: &layer.nodes,
-            row_len,
-            dt: clock.dt,
-            after_momentum,
-        };
-        match &material.model {
-            MaterialModel::LinearElastic(m) => step.apply(m, &mut points, &scratch.stencils),
+    let after_momentum = scheme == UpdateScheme::Usl;
+    move |grid, clock, mut bodies| {
+        let row_len = grid.nodes()[0];
+        for (material, mut points, layer, scratch) in &mut bodies {
+            let step = StrainStep {
+                nodes: &layer.nodes,
+                row_len,
+                dt: clock.dt,
+                after_momentum,
+            };
+            match &material.model {
+                MaterialModel::LinearElastic(m) => step.apply(m, &mut points, &scratch.stencils),
+            }
         }
     }
 }

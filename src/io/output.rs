@@ -63,11 +63,12 @@ impl RunOutput {
         Ok(())
     }
 
-    /// Writes the last frame (if not yet written), the collection, the CSV
-    /// files and the plots. Call at the end of a run, also after a failure.
-    pub fn finish(&mut self, sim: &mut Simulation) -> std::io::Result<()> {
+    /// Writes the last frame (if not yet written, and only if the last step
+    /// did not fail: a broken state is never written), the collection, the
+    /// CSV files and the plots. Call at the end of a run, also after a failure.
+    pub fn finish(&mut self, sim: &mut Simulation, failed: bool) -> std::io::Result<()> {
         let time = sim.clock().time;
-        if self.frames.last().is_none_or(|(t, _)| *t != time) {
+        if !failed && self.frames.last().is_none_or(|(t, _)| *t != time) {
             self.write_frame(sim)?;
         }
         write_collection(&self.dir.join("points.pvd"), &self.frames)?;
@@ -78,7 +79,7 @@ impl RunOutput {
         csv::write_energy(&self.dir.join("energy.csv"), energy)?;
         self.plot_energy(energy)?;
         self.plot_probes(probes)?;
-        self.plot_snapshot(sim.name(), world.resource::<Grid>(), time)
+        self.plot_snapshot(sim.name(), world.resource::<Grid>())
     }
 
     fn write_frame(&mut self, sim: &mut Simulation) -> std::io::Result<()> {
@@ -191,8 +192,10 @@ impl RunOutput {
         Ok(())
     }
 
-    fn plot_snapshot(&self, name: &str, grid: &Grid, time: Real) -> std::io::Result<()> {
+    /// The last written frame as a PNG.
+    fn plot_snapshot(&self, name: &str, grid: &Grid) -> std::io::Result<()> {
         let b = &self.buffers;
+        let time = self.frames.last().map_or(0.0, |f| f.0);
         let magnitude: Vec<Real> = b.displacements.iter().map(|u| u.length()).collect();
         plot_points(
             &self.dir.join("snapshot.png"),

@@ -5,7 +5,8 @@ use crate::shape_functions::ShapeFunction;
 use bevy_ecs::prelude::Resource;
 use serde::{Deserialize, Serialize};
 
-/// When the stress is updated relative to the nodal momentum update.
+/// When the stress is updated relative to the nodal momentum update. Read
+/// once, when the step schedule is built (it fixes the order of the sets).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum UpdateScheme {
     /// Update stress first (Algorithm 1): strain rate from the nodal velocity

@@ -22,17 +22,20 @@ impl SourceLocation {
         }
     }
 
-    /// The position of the first match of the last of `anchors` found by
-    /// searching for each anchor after the previous one (e.g. `["bodies",
-    /// "\"column\"", "material"]`); the file alone when they are not found.
+    /// The position of the last of `anchors`, each searched for after the
+    /// previous one (e.g. `["bodies", "\"column\"", "material"]`), or the
+    /// file alone when one is not found. Comments are skipped; a quoted
+    /// anchor matches a string literal, any other anchor a field name (an
+    /// identifier followed by `:`). Columns count characters, as ron's do.
     pub fn find(source: &str, path: &Path, anchors: &[&str]) -> Self {
+        let text = without_comments(source);
         let mut offset = 0;
         let mut found = None;
         for anchor in anchors {
-            match source[offset..].find(anchor) {
-                Some(k) => {
-                    found = Some(offset + k);
-                    offset += k + anchor.len();
+            match find_anchor(&text, offset, anchor) {
+                Some(at) => {
+                    found = Some(at);
+                    offset = at + anchor.len();
                 }
                 None => {
                     return Self {
@@ -45,7 +48,10 @@ impl SourceLocation {
         let line_col = found.map(|at| {
             let before = &source[..at];
             let line = before.matches('\n').count() + 1;
-            let col = before.len() - before.rfind('\n').map_or(0, |k| k + 1) + 1;
+            let col = before[before.rfind('\n').map_or(0, |k| k + 1)..]
+                .chars()
+                .count()
+                + 1;
             (line, col)
         });
         Self {
@@ -55,6 +61,63 @@ impl SourceLocation {
     }
 }
 
+/// Byte offset of the first match of `anchor` at or after `from`: a string
+/// literal matches anywhere, a field name only as a whole identifier followed
+/// by optional white space and `:`.
+fn find_anchor(text: &str, from: usize, anchor: &str) -> Option<usize> {
+    let is_ident = |c: char| c.is_alphanumeric() || c == '_';
+    let mut start = from;
+    while let Some(k) = text[start..].find(anchor) {
+        let at = start + k;
+        let end = at + anchor.len();
+        let quoted = anchor.starts_with('"');
+        let whole = quoted
+            || (!text[..at].chars().next_back().is_some_and(is_ident)
+                && text[end..].trim_start().starts_with(':'));
+        if whole {
+            return Some(at);
+        }
+        start = end;
+    }
+    None
+}
+
+/// `source` with every comment replaced by spaces (same byte offsets):
+/// `// ...` to the end of the line and `/* ... */`, outside string literals.
+fn without_comments(source: &str) -> String {
+    let bytes = source.as_bytes();
+    let mut out = bytes.to_vec();
+    let mut k = 0;
+    let mut in_string = false;
+    while k < bytes.len() {
+        match (in_string, bytes[k], bytes.get(k + 1)) {
+            (true, b'\\', _) => k += 1,
+            (_, b'"', _) => in_string = !in_string,
+            (false, b'/', Some(b'/')) => {
+                while k < bytes.len() && bytes[k] != b'\n' {
+                    out[k] = b' ';
+                    k += 1;
+                }
+                continue;
+            }
+            (false, b'/', Some(b'*')) => {
+                while k < bytes.len() && !(bytes[k] == b'*' && bytes.get(k + 1) == Some(&b'/')) {
+                    out[k] = b' ';
+                    k += 1;
+                }
+                out[k..(k + 2).min(bytes.len())].fill(b' ');
+                k += 2;
+                continue;
+            }
+            _ => {}
+        }
+        k += 1;
+    }
+    // Only ASCII bytes were replaced by ASCII spaces, and whole comments at
+    // that, so the text stays valid UTF-8.
+    String::from_utf8(out).unwrap_or_else(|_| source.to_owned())
+}
+
 impl fmt::Display for SourceLocation {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match (&self.path, self.line_col) {
@@ -62,5 +125,19 @@ impl fmt::Display for SourceLocation {
             (Some(p), None) => write!(f, "{}", p.display()),
             (None, _) => write!(f, "scene"),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn anchors_skip_comments_and_match_whole_fields() {
+        let text = "// cells: (1, 1) in a comment\nScene(\n  grid: (cells: (2, 2), xcells: 3),\n  /* cells: */ name: \"α cells\",\n)";
+        let at = SourceLocation::find(text, Path::new("s.ron"), &["grid", "cells"]);
+        assert_eq!(at.line_col, Some((3, 10)));
+        let name = SourceLocation::find(text, Path::new("s.ron"), &["\"α cells\""]);
+        assert_eq!(name.line_col, Some((4, 22)));
     }
 }

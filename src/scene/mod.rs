@@ -74,6 +74,13 @@ pub struct GridSpec {
     pub edges: EdgeConditions,
 }
 
+impl GridSpec {
+    /// Upper-right corner (m).
+    pub fn max(&self) -> DVec2 {
+        self.origin + DVec2::new(self.cells.0 as Real, self.cells.1 as Real) * self.cell_size
+    }
+}
+
 /// Time stepping.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

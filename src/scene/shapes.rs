@@ -38,8 +38,15 @@ pub enum Shape {
 }
 
 impl Shape {
-    /// Checks the geometry: ordered corners, positive radii, a convex polygon.
+    /// Checks the geometry: finite coordinates, ordered corners, positive
+    /// radii, a convex polygon.
     pub fn check(&self) -> Result<(), String> {
+        let (lo, hi) = self.bounds();
+        if !(lo.is_finite() && hi.is_finite()) {
+            return Err(format!(
+                "shape coordinates must be finite, got bounds {lo} to {hi}"
+            ));
+        }
         match self {
             Self::Rectangle { min, max } => {
                 if !(min.cmplt(*max).all() && min.is_finite() && max.is_finite()) {

@@ -10,6 +10,11 @@ use std::path::Path;
 /// beyond what MPM accuracy gains from; larger counts are almost surely typos.
 const MAX_POINTS_PER_CELL: u32 = 8;
 
+/// Most nodes a grid may have: 5e7 nodes make an 4.4 GB layer per body (88
+/// bytes a node), beyond what a 2D run on one machine can use; node indices
+/// are stored as u32, which this also keeps in range.
+const MAX_NODES: u128 = 50_000_000;
+
 impl Scene {
     /// Validates; `source` (text and path) lets errors point into the file.
     pub(super) fn validate_in(&self, source: Option<(&str, &Path)>) -> Result<(), SceneError> {
@@ -25,6 +30,22 @@ impl Scene {
         let grid = &self.grid;
         rules::positive(grid.cell_size)
             .map_err(|e| invalid(&["grid", "cell_size"], format!("grid.cell_size: {e}")))?;
+        if !grid.origin.is_finite() {
+            return Err(invalid(
+                &["grid", "origin"],
+                format!("grid.origin must be finite, got {}", grid.origin),
+            ));
+        }
+        let nodes = (grid.cells.0 as u128 + 1) * (grid.cells.1 as u128 + 1);
+        if nodes > MAX_NODES {
+            return Err(invalid(
+                &["grid", "cells"],
+                format!(
+                    "grid.cells {:?} give {nodes} nodes, more than the {MAX_NODES} a layer may hold",
+                    grid.cells
+                ),
+            ));
+        }
         if grid.cells.0 < 2 || grid.cells.1 < 2 {
             return Err(invalid(
                 &["grid", "cells"],
@@ -83,11 +104,7 @@ impl Scene {
                 "the scene has no body: expected at least one in `bodies`".into(),
             ));
         }
-        let (grid_min, grid_max) = (
-            grid.origin,
-            grid.origin
-                + glam::DVec2::new(grid.cells.0 as f64, grid.cells.1 as f64) * grid.cell_size,
-        );
+        let (grid_min, grid_max) = (grid.origin, grid.max());
         let margin = self.settings.shape_function.required_margin_cells() * grid.cell_size;
         let mut body_names = BTreeSet::new();
         for b in &self.bodies {
@@ -154,16 +171,28 @@ impl Scene {
                         .map_err(|e| fail("velocity", format!("body '{}': {e}", b.name)))?;
                 }
             }
-            if let Some(InitialStress::Geostatic { k0, .. }) = &b.initial_stress {
+            if let Some(InitialStress::Geostatic { k0, surface }) = &b.initial_stress {
                 rules::non_negative(*k0)
                     .map_err(|e| fail("initial_stress", format!("body '{}': k0: {e}", b.name)))?;
+                if surface.is_some_and(|s| !s.is_finite()) {
+                    let message =
+                        format!("body '{}': the geostatic surface must be finite", b.name);
+                    return Err(fail("initial_stress", message));
+                }
+                if self.gravity.y.is_nan() || self.gravity.y >= 0.0 {
+                    let message = format!(
+                        "body '{}': geostatic stress needs gravity pointing down (g_y < 0), got {}",
+                        b.name, self.gravity
+                    );
+                    return Err(fail("initial_stress", message));
+                }
             }
             for c in &b.constraints {
-                if c.min.cmpgt(c.max).any() {
+                if !(c.min.is_finite() && c.max.is_finite()) || c.min.cmpgt(c.max).any() {
                     return Err(fail(
                         "constraints",
                         format!(
-                            "body '{}': constraint region needs min ≤ max, got {} and {}",
+                            "body '{}': constraint region needs finite min ≤ max, got {} and {}",
                             b.name, c.min, c.max
                         ),
                     ));
@@ -178,6 +207,12 @@ impl Scene {
                 return Err(invalid(
                     &at,
                     format!("probe name '{}' is used twice", p.name),
+                ));
+            }
+            if !p.at.is_finite() {
+                return Err(invalid(
+                    &[at[0], at[1], "at"],
+                    format!("probe '{}': location must be finite, got {}", p.name, p.at),
                 ));
             }
             if !body_names.contains(p.body.as_str()) {
