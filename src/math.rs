@@ -39,19 +39,9 @@ impl SymTensor {
         Self { xx, yy, xy, zz }
     }
 
-    /// The in-plane 2×2 block as a matrix (columns are `glam`'s storage order).
-    pub fn in_plane(&self) -> DMat2 {
-        DMat2::from_cols(DVec2::new(self.xx, self.xy), DVec2::new(self.xy, self.yy))
-    }
-
     /// Traction on a plane of unit normal `n` (in-plane part): σ · n.
     pub fn dot(&self, n: DVec2) -> DVec2 {
         DVec2::new(self.xx * n.x + self.xy * n.y, self.xy * n.x + self.yy * n.y)
-    }
-
-    /// Trace over all three normal components.
-    pub fn trace(&self) -> Real {
-        self.xx + self.yy + self.zz
     }
 
     /// Full double contraction a : b, counting the shear component twice.

@@ -1,6 +1,6 @@
 //! The library entry point: a world and its step schedule.
 
-use crate::components::{BodyIndex, BodyName, MaterialPoints};
+use crate::components::{BodyIndex, BodyName, MaterialPoints, sort_into_scene_order};
 use crate::io::state_hash::StateHasher;
 use crate::math::Real;
 use crate::resources::{Clock, Diagnostics, NumericalFailure};
@@ -131,14 +131,20 @@ impl Simulation {
 
     /// Bodies in scene order with their names.
     pub fn bodies(&mut self) -> Vec<(Entity, String)> {
-        let mut bodies: Vec<(BodyIndex, Entity, String)> = self
-            .world
-            .query::<(Entity, &BodyIndex, &BodyName)>()
-            .iter(&self.world)
-            .map(|(e, i, n)| (*i, e, n.0.clone()))
-            .collect();
-        bodies.sort_by_key(|b| b.0);
-        bodies.into_iter().map(|(_, e, n)| (e, n)).collect()
+        let mut order = Vec::new();
+        let mut query = self.world.query::<(Entity, &BodyIndex)>();
+        sort_into_scene_order(&mut order, query.iter(&self.world).map(|(e, i)| (*i, e)));
+        order
+            .into_iter()
+            .map(|(_, e)| {
+                (
+                    e,
+                    self.world
+                        .get::<BodyName>(e)
+                        .map_or_else(String::new, |n| n.0.clone()),
+                )
+            })
+            .collect()
     }
 
     /// The points of a body.

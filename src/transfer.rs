@@ -9,7 +9,7 @@
 //! after the first step a scatter allocates nothing.
 
 use crate::math::{DVec2, Real};
-use crate::shape_functions::Stencil;
+use crate::shape_functions::{STENCIL_WIDTH, Stencil};
 use rayon::prelude::*;
 use std::ops::AddAssign;
 
@@ -18,7 +18,9 @@ use std::ops::AddAssign;
 /// bodies run on one thread.
 pub const MIN_POINTS_PER_TASK: usize = 1024;
 
-/// Fewest nodes one parallel task handles in the per-node loops.
+/// Fewest nodes one parallel task handles in the per-node loops: a node
+/// update is a few flops, so smaller tasks cost more to hand out than they
+/// save (measured on the standard bench: no gain below 4096).
 pub const MIN_NODES_PER_TASK: usize = 4096;
 
 /// Points per scatter chunk. Fixed (not derived from the thread count) so that
@@ -109,7 +111,7 @@ impl<T: Copy + Default> Patch<T> {
         for s in stencils {
             for d in 0..2 {
                 lo[d] = lo[d].min(s.base[d]);
-                hi[d] = hi[d].max(s.base[d] + 2);
+                hi[d] = hi[d].max(s.base[d] + STENCIL_WIDTH as u32 - 1);
             }
         }
         self.origin = [lo[0] as usize, lo[1] as usize];

@@ -1,6 +1,6 @@
 //! End of the step: finiteness check, clock, probes and energies.
 
-use crate::components::{BodyIndex, BodyName, Material, MaterialPoints};
+use crate::components::{BodyIndex, BodyName, Material, MaterialPoints, sort_into_scene_order};
 use crate::math::Real;
 use crate::resources::{Clock, Diagnostics, EnergyLog, EnergySample, NumericalFailure, Probes};
 use crate::transfer::MIN_POINTS_PER_TASK;
@@ -11,14 +11,14 @@ use rayon::prelude::*;
 /// each body with a non-finite position, velocity or stress, or a
 /// non-positive volume (an inverted deformation gradient).
 ///
-/// Reads: `Clock`, `MaterialPoints`, `BodyName`. Writes: `Diagnostics`.
+/// Reads: `Clock`, `BodyIndex`, `BodyName`, `MaterialPoints`. Writes: `Diagnostics`.
 pub fn check_finite(
     clock: Res<Clock>,
     mut diagnostics: ResMut<Diagnostics>,
     mut order: Local<Vec<(BodyIndex, Entity)>>,
     bodies: Query<(Entity, &BodyIndex, &BodyName, &MaterialPoints)>,
 ) {
-    scene_order(&mut order, bodies.iter().map(|(e, i, _, _)| (*i, e)));
+    sort_into_scene_order(&mut order, bodies.iter().map(|(e, i, _, _)| (*i, e)));
     for (_, name, points) in order
         .iter()
         .filter_map(|(_, e)| bodies.get(*e).ok().map(|b| (b.1, b.2, b.3)))
@@ -103,7 +103,7 @@ pub fn record_probes_and_energy(
         return;
     }
     probes.record(clock.time, |entity| bodies.get(entity).ok().map(|b| b.2));
-    scene_order(&mut order, bodies.iter().map(|(e, i, _, _)| (*i, e)));
+    sort_into_scene_order(&mut order, bodies.iter().map(|(e, i, _, _)| (*i, e)));
     let ordered = order
         .iter()
         .filter_map(|(_, e)| bodies.get(*e).ok())
@@ -111,14 +111,4 @@ pub fn record_probes_and_energy(
     energy
         .samples
         .push(EnergySample::of(clock.time, ordered, &mut scratch));
-}
-
-/// Fills `order` with the bodies sorted by their scene index, reusing its storage.
-fn scene_order(
-    order: &mut Vec<(BodyIndex, Entity)>,
-    bodies: impl Iterator<Item = (BodyIndex, Entity)>,
-) {
-    order.clear();
-    order.extend(bodies);
-    order.sort_unstable();
 }

@@ -11,7 +11,8 @@ use rayon::prelude::*;
 /// f_i = f_ext + f_int, less local damping α |f| sign(v) per component
 /// (Cundall 1987), p_i ← p_i + f_i Δt and v_i^{n+1} = p_i / m_i, constrained.
 ///
-/// Reads: `Grid`, `Settings`, `Clock`, `MaterialPoints` (volume, stress).
+/// Reads: `Grid`, `Settings`, `Clock`, `MaterialPoints` (volume, stress),
+/// `TransferScratch::stencils`, `GridLayer::nodes` (mass, external force, velocity).
 /// Writes: `TransferScratch::internal_force`, `GridLayer::nodes` (internal force, momentum, new velocity).
 pub fn solve_nodal_momentum(
     grid: Res<Grid>,

@@ -14,7 +14,7 @@ use rayon::prelude::*;
 /// constrained. A point whose support leaves the grid is reported as a
 /// numerical failure and contributes nothing.
 ///
-/// Reads: `Grid`, `Settings`, `Gravity`, `MaterialPoints`.
+/// Reads: `Grid`, `Settings`, `Gravity`, `Clock`, `BodyName`, `MaterialPoints`.
 /// Writes: `TransferScratch`, `GridLayer::nodes` (mass, momentum, external force, velocity), `Diagnostics`.
 pub fn particle_to_grid(
     grid: Res<Grid>,

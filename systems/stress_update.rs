@@ -20,11 +20,7 @@ use rayon::prelude::*;
 /// Writes: `MaterialPoints` (deformation gradient, volume, stress, strain).
 pub fn update_stress(
     scheme: UpdateScheme,
-) -> impl FnMut(
-    Res<Grid>,
-    Res<Clock>,
-    Query<(&Material, &mut MaterialPoints, &GridLayer, &TransferScratch)>,
-) {
+) -> impl FnMut(Res<Grid>, Res<Clock>, Query<StressUpdateData>) {
     let after_momentum = scheme == UpdateScheme::Usl;
     move |grid, clock, mut bodies| {
         let row_len = grid.nodes()[0];
@@ -41,6 +37,14 @@ pub fn update_stress(
         }
     }
 }
+
+/// The components the stress update reads and writes per body.
+type StressUpdateData = (
+    &'static Material,
+    &'static mut MaterialPoints,
+    &'static GridLayer,
+    &'static TransferScratch,
+);
 
 /// What the stress update of one body reads from its layer.
 struct StrainStep<'a> {

@@ -84,3 +84,40 @@ fn check_accepts_every_shipped_scene() {
             .contains("no/such/scene.ron: cannot read the scene")
     );
 }
+
+#[test]
+fn a_blow_up_stops_the_run_and_writes_no_broken_state() {
+    // Ten times the CFL limit: the bar inverts within a few steps.
+    let base = std::env::temp_dir().join(format!("mpdem-blowup-{}", std::process::id()));
+    std::fs::create_dir_all(&base).unwrap();
+    let scene = base.join("blow.ron");
+    let text = std::fs::read_to_string(common::scene_path("wave_1d.ron")).unwrap();
+    std::fs::write(
+        &scene,
+        text.replacen("dt: 1e-4, end: 1.0", "dt: 5e-3, end: 1.0", 1),
+    )
+    .unwrap();
+    let out = base.join("out");
+    let result = mpdem(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!result.status.success());
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(stderr.contains("CFL limit"), "{stderr}");
+    assert!(
+        stderr.contains("numerical failure at step") && stderr.contains("body 'bar', point"),
+        "{stderr}"
+    );
+    for file in ["probes.csv", "energy.csv"] {
+        let text = std::fs::read_to_string(out.join(file)).unwrap();
+        assert!(
+            !text.to_lowercase().contains("nan") && !text.contains("inf"),
+            "{file} holds a broken state"
+        );
+    }
+    std::fs::remove_dir_all(&base).ok();
+}

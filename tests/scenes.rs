@@ -125,6 +125,37 @@ fn bodies_outside_the_grid_are_refused() {
 }
 
 #[test]
+fn geostatic_stress_needs_gravity_pointing_down() {
+    let mut scene = common::load_scene("elastic_column.ron");
+    scene.bodies[0].initial_stress = Some(mpdem::scene::InitialStress::Geostatic {
+        k0: 0.5,
+        surface: None,
+    });
+    assert!(Simulation::from_scene(&scene).is_ok());
+    scene.gravity = DVec2::new(0.0, 9.81);
+    let message = Simulation::from_scene(&scene)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(message.contains("gravity pointing down"), "{message}");
+}
+
+#[test]
+fn non_finite_values_are_refused() {
+    let e = parse_edited("at: (0.5, 0.005)", "at: (inf, 0.005)");
+    assert_error(
+        e,
+        line_of("at: (0.5, 0.005)", "at: (inf, 0.005)", "at: (inf"),
+        "location must be finite",
+    );
+    let e = parse_edited(
+        "min: (0.0, 0.0), max: (1.0, 0.01)",
+        "min: (0.0, NaN), max: (1.0, 0.01)",
+    );
+    assert!(e.to_string().contains("finite"), "{e}");
+}
+
+#[test]
 fn a_time_step_above_the_cfl_limit_warns_with_the_limit() {
     let mut scene = common::load_scene("wave_1d.ron");
     scene.time.dt = 1e-3;

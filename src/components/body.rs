@@ -2,7 +2,7 @@
 
 use crate::materials::MaterialModel;
 use crate::math::{DVec2, Real};
-use bevy_ecs::prelude::Component;
+use bevy_ecs::prelude::{Component, Entity};
 use serde::{Deserialize, Serialize};
 
 /// The body's name from the scene (unique).
@@ -14,6 +14,17 @@ pub struct BodyName(pub String);
 /// results never depend on the ECS storage order.
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub struct BodyIndex(pub u32);
+
+/// Fills `order` with `bodies` sorted by scene index, reusing its storage:
+/// every loop whose results meet across bodies visits them in this order.
+pub fn sort_into_scene_order(
+    order: &mut Vec<(BodyIndex, Entity)>,
+    bodies: impl Iterator<Item = (BodyIndex, Entity)>,
+) {
+    order.clear();
+    order.extend(bodies);
+    order.sort_unstable();
+}
 
 /// The body's material: density and constitutive model.
 #[derive(Component, Clone, Debug, PartialEq)]

@@ -7,7 +7,9 @@ mod grid_layer;
 mod material_points;
 mod transfer_scratch;
 
-pub use body::{BodyIndex, BodyName, Material, RegionConstraint, RegionConstraints};
+pub use body::{
+    BodyIndex, BodyName, Material, RegionConstraint, RegionConstraints, sort_into_scene_order,
+};
 pub use grid_layer::{Fix, GridLayer, GridNode, NodeConstraint};
 pub use material_points::{MaterialPoints, NewPoint};
 pub use transfer_scratch::{MassMomentumForce, TransferScratch};

@@ -27,7 +27,10 @@ pub fn write_probes(path: &Path, probes: &Probes) -> std::io::Result<()> {
     out.flush()
 }
 
-/// Writes `energy.csv`: time, kinetic, strain, total (J per metre of thickness).
+/// Writes `energy.csv`: time, kinetic, strain, total (J per metre of
+/// thickness). `total` is kinetic + strain: it leaves out the potential of
+/// gravity and the work of damping and boundaries, so it is conserved only
+/// for a free elastic body.
 pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     writeln!(out, "time,kinetic,strain,total")?;

@@ -8,7 +8,6 @@ use crate::components::{BodyIndex, MaterialPoints};
 use crate::math::{DVec2, Real};
 use crate::resources::{EnergyLog, Grid, Probes};
 use crate::simulation::Simulation;
-use bevy_ecs::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// Writes a run's results into one folder:
@@ -83,7 +82,7 @@ impl RunOutput {
     }
 
     fn write_frame(&mut self, sim: &mut Simulation) -> std::io::Result<()> {
-        self.buffers.fill(sim.world_mut());
+        self.buffers.fill(sim);
         let b = &self.buffers;
         let frame = PointFrame {
             positions: &b.positions,
@@ -212,20 +211,21 @@ impl RunOutput {
 
 impl FrameBuffers {
     /// Copies the current state of every body, in scene order.
-    fn fill(&mut self, world: &mut World) {
+    fn fill(&mut self, sim: &mut Simulation) {
         self.positions.clear();
         self.velocities.clear();
         self.displacements.clear();
         self.stresses.clear();
         self.body.clear();
         self.marker = Real::INFINITY;
-        let mut bodies: Vec<(BodyIndex, &MaterialPoints)> = world
-            .query::<(&BodyIndex, &MaterialPoints)>()
-            .iter(world)
-            .map(|(i, p)| (*i, p))
-            .collect();
-        bodies.sort_by_key(|b| b.0);
-        for (index, points) in bodies {
+        for (entity, _) in sim.bodies() {
+            let world = sim.world();
+            let (Some(index), Some(points)) = (
+                world.get::<BodyIndex>(entity),
+                world.get::<MaterialPoints>(entity),
+            ) else {
+                continue;
+            };
             self.positions.extend_from_slice(&points.position);
             self.velocities.extend_from_slice(&points.velocity);
             self.displacements

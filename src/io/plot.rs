@@ -4,6 +4,7 @@
 //! plotters' `ab_glyph` text backend), so plots look the same on every machine and need no system
 //! fonts. Both functions write PNG files and require the path to end in `.png`.
 
+use crate::math::{DVec2, Real};
 use std::ops::Range;
 use std::path::Path;
 use std::sync::OnceLock;
@@ -62,7 +63,7 @@ pub struct Series<'a> {
     /// Legend entry; an empty name leaves the curve out of the legend.
     pub name: &'a str,
     /// Samples in drawing order; samples with a non-finite coordinate are skipped.
-    pub points: &'a [(f64, f64)],
+    pub points: &'a [(Real, Real)],
     /// How the samples are drawn.
     pub style: SeriesStyle,
 }
@@ -116,11 +117,11 @@ pub fn plot_points(
     path: &Path,
     title: &str,
     value_label: &str,
-    positions: &[glam::DVec2],
-    values: &[f64],
-    marker_size: f64,
-    view: (glam::DVec2, glam::DVec2),
-    outlines: &[Vec<glam::DVec2>],
+    positions: &[DVec2],
+    values: &[Real],
+    marker_size: Real,
+    view: (DVec2, DVec2),
+    outlines: &[Vec<DVec2>],
 ) -> std::io::Result<()> {
     check_png_path(path)?;
     if positions.len() != values.len() {
@@ -143,13 +144,13 @@ pub fn plot_points(
     // view along one axis to the plot area in case the height was clamped.
     let chrome_width = COLORBAR_WIDTH + 2 * CHART_MARGIN + Y_LABEL_AREA;
     let chrome_height = TITLE_HEIGHT + 2 * CHART_MARGIN + X_LABEL_AREA;
-    let plot_width = f64::from(SNAPSHOT_WIDTH - chrome_width);
+    let plot_width = Real::from(SNAPSHOT_WIDTH - chrome_width);
     let height =
-        (plot_width * size.y / size.x + f64::from(chrome_height)).clamp(300.0, 2000.0) as u32;
-    let plot_height = f64::from(height - chrome_height);
+        (plot_width * size.y / size.x + Real::from(chrome_height)).clamp(300.0, 2000.0) as u32;
+    let plot_height = Real::from(height - chrome_height);
     let pixels_per_unit = (plot_width / size.x).min(plot_height / size.y);
     let center = 0.5 * (lo + hi);
-    let half = 0.5 * glam::DVec2::new(plot_width, plot_height) / pixels_per_unit;
+    let half = 0.5 * DVec2::new(plot_width, plot_height) / pixels_per_unit;
     let snapshot = Snapshot {
         title,
         value_label,
@@ -171,12 +172,12 @@ pub fn plot_points(
 struct Snapshot<'a> {
     title: &'a str,
     value_label: &'a str,
-    positions: &'a [glam::DVec2],
-    values: &'a [f64],
+    positions: &'a [DVec2],
+    values: &'a [Real],
     marker_pixels: i32,
-    x_range: Range<f64>,
-    y_range: Range<f64>,
-    outlines: &'a [Vec<glam::DVec2>],
+    x_range: Range<Real>,
+    y_range: Range<Real>,
+    outlines: &'a [Vec<DVec2>],
 }
 
 /// Result of drawing on a plotters drawing area of backend `DB`.
@@ -355,7 +356,7 @@ fn draw_snapshot<DB: DrawingBackend>(
 fn draw_colorbar<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     label: &str,
-    range: Option<(f64, f64)>,
+    range: Option<(Real, Real)>,
 ) -> DrawResult<DB> {
     let (_, height) = area.dim_in_pixel();
     let (top, bottom) = (
@@ -364,7 +365,7 @@ fn draw_colorbar<DB: DrawingBackend>(
     );
     let (left, right) = (10, 40);
     for y in top..bottom {
-        let t = f64::from(bottom - 1 - y) / f64::from((bottom - top - 1).max(1));
+        let t = Real::from(bottom - 1 - y) / Real::from((bottom - top - 1).max(1));
         area.draw(&Rectangle::new(
             [(left, y), (right, y + 1)],
             viridis(t).filled(),
@@ -389,7 +390,7 @@ fn draw_colorbar<DB: DrawingBackend>(
 
 /// Range of the finite samples padded by 5% on each side; a constant sample gets a range around
 /// its value and no finite sample gives 0..1.
-fn padded_range(samples: impl Iterator<Item = f64>) -> Range<f64> {
+fn padded_range(samples: impl Iterator<Item = Real>) -> Range<Real> {
     let Some((lo, hi)) = finite_range(samples) else {
         return 0.0..1.0;
     };
@@ -405,7 +406,7 @@ fn padded_range(samples: impl Iterator<Item = f64>) -> Range<f64> {
 }
 
 /// Minimum and maximum of the finite samples, `None` if there is none.
-fn finite_range(samples: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
+fn finite_range(samples: impl Iterator<Item = Real>) -> Option<(Real, Real)> {
     samples
         .filter(|v| v.is_finite())
         .fold(None, |range, v| match range {
@@ -415,7 +416,7 @@ fn finite_range(samples: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
 }
 
 /// Position of `value` in `(min, max)` as a fraction in [0, 1]; 0.5 for an empty range.
-fn normalize(value: f64, (min, max): (f64, f64)) -> f64 {
+fn normalize(value: Real, (min, max): (Real, Real)) -> Real {
     if max > min {
         ((value - min) / (max - min)).clamp(0.0, 1.0)
     } else {
@@ -424,18 +425,18 @@ fn normalize(value: f64, (min, max): (f64, f64)) -> f64 {
 }
 
 /// Viridis colour at `t` in [0, 1] (clamped), linearly interpolated between the table entries.
-fn viridis(t: f64) -> RGBColor {
-    let scaled = t.clamp(0.0, 1.0) * (VIRIDIS.len() - 1) as f64;
+fn viridis(t: Real) -> RGBColor {
+    let scaled = t.clamp(0.0, 1.0) * (VIRIDIS.len() - 1) as Real;
     let index = (scaled.floor() as usize).min(VIRIDIS.len() - 2);
-    let frac = scaled - index as f64;
+    let frac = scaled - index as Real;
     let (a, b) = (VIRIDIS[index], VIRIDIS[index + 1]);
-    let mix = |a: u8, b: u8| (f64::from(a) + frac * (f64::from(b) - f64::from(a))).round() as u8;
+    let mix = |a: u8, b: u8| (Real::from(a) + frac * (Real::from(b) - Real::from(a))).round() as u8;
     RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
 /// Compact label for a colour bar value: plain decimals for moderate magnitudes, otherwise
 /// scientific notation, with up to 4 significant digits and no trailing zeros.
-fn format_value(value: f64) -> String {
+fn format_value(value: Real) -> String {
     let magnitude = value.abs();
     if value == 0.0 {
         "0".to_string()

@@ -9,6 +9,7 @@
 //! A `.pvd` collection ties a series of `.vtu` files to simulation times so ParaView plays the
 //! series with the right time values.
 
+use crate::math::{DVec2, Real};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
@@ -21,13 +22,13 @@ use vtkio::model::{
 /// One output frame of all material points (all bodies concatenated), columns of equal length.
 pub struct PointFrame<'a> {
     /// Current position of each point (m).
-    pub positions: &'a [glam::DVec2],
+    pub positions: &'a [DVec2],
     /// Velocity of each point (m/s).
-    pub velocities: &'a [glam::DVec2],
+    pub velocities: &'a [DVec2],
     /// Displacement of each point from its initial position (m).
-    pub displacements: &'a [glam::DVec2],
+    pub displacements: &'a [DVec2],
     /// Cauchy stress per point as [xx, yy, xy, zz] (Pa, tension positive).
-    pub stresses: &'a [[f64; 4]],
+    pub stresses: &'a [[Real; 4]],
     /// Index of the body each point belongs to (scene order).
     pub body: &'a [u32],
 }
@@ -55,7 +56,7 @@ pub fn write_point_frame(path: &Path, frame: &PointFrame) -> std::io::Result<()>
             format!("point frame columns differ in length: {n} positions, others {lengths:?}"),
         ));
     }
-    let stress: Vec<f64> = frame
+    let stress: Vec<Real> = frame
         .stresses
         .iter()
         .flat_map(|&[xx, yy, xy, zz]| [xx, xy, 0.0, xy, yy, 0.0, 0.0, 0.0, zz])
@@ -83,7 +84,7 @@ pub fn write_point_frame(path: &Path, frame: &PointFrame) -> std::io::Result<()>
 ///
 /// Each outline's points are stored once; its cell returns to the first point to close the loop.
 /// Empty outlines are skipped. Fails with the I/O error of creating or writing the file.
-pub fn write_outlines(path: &Path, outlines: &[Vec<glam::DVec2>]) -> std::io::Result<()> {
+pub fn write_outlines(path: &Path, outlines: &[Vec<DVec2>]) -> std::io::Result<()> {
     let mut points = Vec::new();
     let mut connectivity = Vec::new();
     let mut offsets = Vec::new();
@@ -109,7 +110,7 @@ pub fn write_outlines(path: &Path, outlines: &[Vec<glam::DVec2>]) -> std::io::Re
 ///
 /// Times are written in round-trip exact scientific notation. Fails with `InvalidInput` if a time
 /// is not finite, or with the I/O error of creating or writing the file.
-pub fn write_collection(path: &Path, entries: &[(f64, String)]) -> std::io::Result<()> {
+pub fn write_collection(path: &Path, entries: &[(Real, String)]) -> std::io::Result<()> {
     if let Some((time, file)) = entries.iter().find(|(time, _)| !time.is_finite()) {
         return Err(std::io::Error::new(
             std::io::ErrorKind::InvalidInput,
@@ -135,7 +136,7 @@ pub fn write_collection(path: &Path, entries: &[(f64, String)]) -> std::io::Resu
 /// Writes one unstructured grid piece with the given points (z = 0), cells and point data.
 fn write_unstructured_grid(
     path: &Path,
-    points: &[glam::DVec2],
+    points: &[DVec2],
     cells: Cells,
     point_data: Vec<Attribute>,
 ) -> std::io::Result<()> {
@@ -169,7 +170,7 @@ fn write_unstructured_grid(
 }
 
 /// Flattens 2D vectors into 3-component (x, y, 0) Float64 data.
-fn xyz(vectors: &[glam::DVec2]) -> IOBuffer {
+fn xyz(vectors: &[DVec2]) -> IOBuffer {
     IOBuffer::F64(vectors.iter().flat_map(|v| [v.x, v.y, 0.0]).collect())
 }
 

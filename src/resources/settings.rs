@@ -1,6 +1,7 @@
 //! Numerical settings and gravity.
 
 use crate::math::{DVec2, Real};
+use crate::scene::rules::{damping, fraction};
 use crate::shape_functions::ShapeFunction;
 use bevy_ecs::prelude::Resource;
 use serde::{Deserialize, Serialize};
@@ -27,12 +28,12 @@ pub struct Settings {
     pub scheme: UpdateScheme,
     /// PIC fraction β of eq. 11 in [0, 1]: 0 is pure FLIP, 1 pure PIC.
     /// Default 0: FLIP conserves energy, which dynamic benchmarks need.
-    #[serde(deserialize_with = "crate::scene::rules::de_non_negative")]
+    #[serde(deserialize_with = "crate::scene::rules::de_fraction")]
     pub pic_fraction: Real,
     /// Local non-viscous damping coefficient α in [0, 1) (Cundall 1987):
     /// each nodal force component is reduced by α |f| in the direction of
     /// motion. Default 0: no damping, so dynamics are not altered unasked.
-    #[serde(deserialize_with = "crate::scene::rules::de_non_negative")]
+    #[serde(deserialize_with = "crate::scene::rules::de_damping")]
     pub damping: Real,
 }
 
@@ -50,15 +51,8 @@ impl Default for Settings {
 impl Settings {
     /// Checks the ranges; the message names the field and the allowed range.
     pub fn check(&self) -> Result<(), String> {
-        if !(0.0..=1.0).contains(&self.pic_fraction) {
-            return Err(format!(
-                "pic_fraction must be in [0, 1], got {}",
-                self.pic_fraction
-            ));
-        }
-        if !(0.0..1.0).contains(&self.damping) {
-            return Err(format!("damping must be in [0, 1), got {}", self.damping));
-        }
+        fraction(self.pic_fraction).map_err(|e| format!("pic_fraction: {e}"))?;
+        damping(self.damping).map_err(|e| format!("damping: {e}"))?;
         Ok(())
     }
 }

@@ -61,7 +61,7 @@ fn default_gravity() -> DVec2 {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GridSpec {
-    /// Lower-left corner (m). Default (0, 0).
+    /// Lower-left corner (m). Default (0, 0): most scenes put their base there.
     #[serde(default)]
     pub origin: DVec2,
     /// Cell size h (m), > 0.
@@ -69,7 +69,7 @@ pub struct GridSpec {
     pub cell_size: Real,
     /// Number of cells along x and y, each ≥ 2.
     pub cells: (usize, usize),
-    /// Conditions on the four edges. Default: all `Free`.
+    /// Conditions on the four edges. Default: all `Free`, nothing imposed unasked.
     #[serde(default)]
     pub edges: EdgeConditions,
 }
@@ -120,7 +120,7 @@ pub struct BodySpec {
     /// Default 2, the usual choice for uGIMP (domain half-size h/4).
     #[serde(default = "default_points_per_cell")]
     pub points_per_cell: u32,
-    /// Initial velocity. Default: at rest.
+    /// Initial velocity. Default: at rest, the usual start of a quasi-static run.
     #[serde(default)]
     pub velocity: InitialVelocity,
     /// Initial stress. Default: none (stress free).
@@ -164,7 +164,8 @@ pub enum InitialStress {
         /// Lateral earth pressure coefficient K0 ≥ 0 (ν/(1−ν) for an elastic soil).
         #[serde(deserialize_with = "rules::de_non_negative")]
         k0: Real,
-        /// Height of the free surface (m). Default: the top of the body.
+        /// Height of the free surface (m). Default: the top of the body, a body
+        /// with nothing resting on it.
         #[serde(default)]
         surface: Option<Real>,
     },
@@ -193,6 +194,18 @@ pub struct OutputSpec {
     /// 1000, a thousand samples, smooth plots at a negligible cost; set it to
     /// `time.dt` to sample every step.
     pub probe_interval: Option<Real>,
+}
+
+impl OutputSpec {
+    /// The frame interval, or its default for a run ending at `end`.
+    pub fn frame_interval_or_default(&self, end: Real) -> Real {
+        self.frame_interval.unwrap_or(end / 100.0)
+    }
+
+    /// The probe interval, or its default for a run ending at `end`.
+    pub fn probe_interval_or_default(&self, end: Real) -> Real {
+        self.probe_interval.unwrap_or(end / 1000.0)
+    }
 }
 
 /// Errors of loading or validating a scene; each says where and what was expected.

@@ -35,6 +35,26 @@ pub fn poisson_ratio(value: Real) -> Result<Real, String> {
     }
 }
 
+/// A fraction in [0, 1] (e.g. the PIC fraction β).
+pub fn fraction(value: Real) -> Result<Real, String> {
+    if (0.0..=1.0).contains(&value) {
+        Ok(value)
+    } else {
+        Err(format!("expected a value in [0, 1], got {value}"))
+    }
+}
+
+/// A damping coefficient in [0, 1): 1 would remove every unbalanced force.
+pub fn damping(value: Real) -> Result<Real, String> {
+    if (0.0..1.0).contains(&value) {
+        Ok(value)
+    } else {
+        Err(format!(
+            "expected a damping coefficient in [0, 1), got {value}"
+        ))
+    }
+}
+
 /// Applies `rule` to an f64 being deserialized.
 fn checked<'de, D: Deserializer<'de>>(
     deserializer: D,
@@ -51,6 +71,16 @@ pub fn de_positive<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
 /// `deserialize_with` form of [`non_negative`].
 pub fn de_non_negative<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
     checked(d, non_negative)
+}
+
+/// `deserialize_with` form of [`fraction`].
+pub fn de_fraction<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
+    checked(d, fraction)
+}
+
+/// `deserialize_with` form of [`damping`].
+pub fn de_damping<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
+    checked(d, damping)
 }
 
 /// `deserialize_with` form of [`poisson_ratio`].

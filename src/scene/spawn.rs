@@ -27,10 +27,6 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         dt: scene.time.dt,
         end: scene.time.end,
     };
-    let every = |interval: Option<Real>| {
-        let interval = interval.unwrap_or(clock.end / 1000.0);
-        ((interval / clock.dt).round() as u64).max(1)
-    };
     let mut warnings = Vec::new();
     let mut bodies = Vec::with_capacity(scene.bodies.len());
     for (index, spec) in scene.bodies.iter().enumerate() {
@@ -80,7 +76,8 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
     }
     let mut probes = Probes {
         probes: Vec::new(),
-        every: every(scene.output.probe_interval),
+        every: ((scene.output.probe_interval_or_default(clock.end) / clock.dt).round() as u64)
+            .max(1),
         samples: Vec::new(),
     };
     for spec in &scene.probes {
@@ -104,6 +101,10 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
             point: nearest,
         });
     }
+    // Room for every sample of the run, so that recording never allocates
+    // inside the step.
+    let samples = (clock.total_steps() / probes.every + 1) as usize;
+    probes.samples.reserve_exact(samples * probes.probes.len());
     probes.record(0.0, |e| world.get::<MaterialPoints>(e));
     let initial_energy = EnergySample::of(
         0.0,
@@ -118,9 +119,11 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
     world.insert_resource(Gravity(scene.gravity));
     world.insert_resource(Diagnostics::default());
     world.insert_resource(probes);
-    world.insert_resource(EnergyLog {
-        samples: vec![initial_energy],
-    });
+    let mut energy = EnergyLog {
+        samples: Vec::with_capacity(samples),
+    };
+    energy.samples.push(initial_energy);
+    world.insert_resource(energy);
     Ok((world, warnings))
 }
 

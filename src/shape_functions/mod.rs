@@ -107,6 +107,10 @@ fn fill<K: Kernel>(
         .min()
 }
 
+/// Nodes per direction of every stencil: the widest kernel support (the
+/// B-spline's 1.5 cells, uGIMP's h + l ≤ 1.5 cells) touches three nodes.
+pub const STENCIL_WIDTH: usize = 3;
+
 /// What a stencil needs to know of the grid.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StencilGrid {
