@@ -14,11 +14,7 @@ fn mpdem(args: &[&str]) -> std::process::Output {
 #[test]
 fn run_writes_csv_vtk_and_png_outputs() {
     // The wave scene shortened to 0.05 s (500 steps) to keep the test fast.
-    let base = std::env::temp_dir().join(format!("mpdem-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&base).unwrap();
-    let scene = base.join("wave_short.ron");
-    let text = std::fs::read_to_string(common::scene_path("wave_1d.ron")).unwrap();
-    std::fs::write(&scene, text.replacen("end: 1.0", "end: 0.05", 1)).unwrap();
+    let (base, scene) = common::edited_wave_scene("short", "end: 1.0", "end: 0.05");
     let out = base.join("out");
     let result = mpdem(&[
         "run",
@@ -88,15 +84,8 @@ fn check_accepts_every_shipped_scene() {
 #[test]
 fn a_blow_up_stops_the_run_and_writes_no_broken_state() {
     // Ten times the CFL limit: the bar inverts within a few steps.
-    let base = std::env::temp_dir().join(format!("mpdem-blowup-{}", std::process::id()));
-    std::fs::create_dir_all(&base).unwrap();
-    let scene = base.join("blow.ron");
-    let text = std::fs::read_to_string(common::scene_path("wave_1d.ron")).unwrap();
-    std::fs::write(
-        &scene,
-        text.replacen("dt: 1e-4, end: 1.0", "dt: 5e-3, end: 1.0", 1),
-    )
-    .unwrap();
+    let (base, scene) =
+        common::edited_wave_scene("blowup", "dt: 1e-4, end: 1.0", "dt: 5e-3, end: 1.0");
     let out = base.join("out");
     let result = mpdem(&[
         "run",

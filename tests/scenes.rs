@@ -170,10 +170,7 @@ fn a_time_step_above_the_cfl_limit_warns_with_the_limit() {
 
 #[test]
 fn a_run_of_a_bad_scene_writes_nothing() {
-    let dir = std::env::temp_dir().join(format!("mpdem-bad-{}", std::process::id()));
-    let scene = dir.with_extension("ron");
-    let text = std::fs::read_to_string(common::scene_path("wave_1d.ron")).unwrap();
-    std::fs::write(&scene, text.replacen("density: 1000.0", "density: 0.0", 1)).unwrap();
+    let (dir, scene) = common::edited_wave_scene("bad", "density: 1000.0", "density: 0.0");
     let out = dir.join("out");
     let status = std::process::Command::new(env!("CARGO_BIN_EXE_mpdem"))
         .args([
@@ -192,5 +189,5 @@ fn a_run_of_a_bad_scene_writes_nothing() {
         "{stderr}"
     );
     assert!(!out.exists(), "output written for a bad scene");
-    std::fs::remove_file(&scene).ok();
+    std::fs::remove_dir_all(&dir).ok();
 }

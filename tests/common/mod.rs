@@ -42,3 +42,15 @@ pub fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T 
         .expect("thread pool")
         .install(f)
 }
+
+/// Writes the wave scene with `from` replaced by `to` into a fresh temporary
+/// folder named after `tag`; returns the folder and the scene file.
+pub fn edited_wave_scene(tag: &str, from: &str, to: &str) -> (PathBuf, PathBuf) {
+    let base = std::env::temp_dir().join(format!("mpdem-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&base).expect("temporary folder");
+    let text = std::fs::read_to_string(scene_path("wave_1d.ron")).expect("wave scene");
+    assert!(text.contains(from), "'{from}' not in wave_1d.ron");
+    let scene = base.join(format!("{tag}.ron"));
+    std::fs::write(&scene, text.replacen(from, to, 1)).expect("scene written");
+    (base, scene)
+}
