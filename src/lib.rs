@@ -21,10 +21,12 @@
 
 pub mod bench;
 pub mod components;
+pub mod contact;
 pub mod io;
 pub mod materials;
 pub mod math;
 pub mod resources;
+pub mod rigid;
 pub mod scene;
 pub mod shape_functions;
 mod simulation;

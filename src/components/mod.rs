@@ -5,6 +5,7 @@
 mod body;
 mod grid_layer;
 mod material_points;
+mod rigid;
 mod transfer_scratch;
 
 pub use body::{
@@ -12,4 +13,8 @@ pub use body::{
 };
 pub use grid_layer::{Fix, GridLayer, GridNode, NodeConstraint};
 pub use material_points::{MaterialPoints, NewPoint};
+pub use rigid::{
+    BlockContactLaw, BlockContacts, BlockId, NeighbourList, PointContact, Pose, Reaction,
+    RigidMass, RigidMotion, RigidShape, RigidVelocity,
+};
 pub use transfer_scratch::{MassMomentumForce, TransferScratch};

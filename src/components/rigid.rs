@@ -1,0 +1,136 @@
+//! Components of a rigid block (DESIGN.md section 2).
+
+use crate::contact::ContactLaw;
+use crate::math::{DVec2, Real};
+use bevy_ecs::prelude::{Component, Entity};
+use parry2d_f64::shape::SharedShape;
+use serde::{Deserialize, Serialize};
+
+/// The block's name from the scene and its position in the scene's list of
+/// blocks (the order of every loop whose results meet across blocks).
+#[derive(Component, Clone, Debug, PartialEq, Eq)]
+pub struct BlockId {
+    /// Unique name.
+    pub name: String,
+    /// Index in the scene's `blocks`.
+    pub index: u32,
+}
+
+/// The block's geometry in its own frame.
+#[derive(Component, Clone)]
+pub struct RigidShape(pub SharedShape);
+
+/// Where the block's frame is: origin (m) and rotation (rad, counter-clockwise).
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq)]
+pub struct Pose {
+    /// Position of the frame origin.
+    pub origin: DVec2,
+    /// Rotation of the frame.
+    pub angle: Real,
+}
+
+impl Pose {
+    /// The parry pose.
+    pub fn to_parry(&self) -> parry2d_f64::math::Pose {
+        parry2d_f64::math::Pose::new(self.origin, self.angle)
+    }
+
+    /// A vector of the block's frame expressed in the world.
+    pub fn rotate(&self, v: DVec2) -> DVec2 {
+        DVec2::from_angle(self.angle).rotate(v)
+    }
+}
+
+/// Velocity of the block: of its centre of mass, and its spin (rad/s).
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct RigidVelocity {
+    /// Velocity of the centre of mass (m/s).
+    pub linear: DVec2,
+    /// Angular velocity (rad/s, counter-clockwise).
+    #[serde(default)]
+    pub angular: Real,
+}
+
+/// How the block moves.
+#[derive(Component, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RigidMotion {
+    /// Never moves (ground, walls).
+    Fixed,
+    /// Moves with its prescribed `RigidVelocity`, whatever the forces.
+    Kinematic,
+    /// Moves under the reactions, gravity and block contacts.
+    Dynamic,
+}
+
+/// Mass properties, from a density and the shape or given.
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct RigidMass {
+    /// Mass (kg per metre of thickness).
+    pub mass: Real,
+    /// Moment of inertia about the centre of mass (kg m² per metre).
+    pub inertia: Real,
+    /// Centre of mass in the block's frame (m).
+    pub local_center: DVec2,
+}
+
+impl RigidMass {
+    /// The centre of mass in the world for the block at `pose`.
+    pub fn center(&self, pose: &Pose) -> DVec2 {
+        pose.origin + pose.rotate(self.local_center)
+    }
+}
+
+/// The DEM law of the block's contacts with material points.
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct BlockContactLaw(pub ContactLaw);
+
+/// The points near the block: candidate contacts, rebuilt every
+/// `iter_period` steps (Algorithm 1, l. 5–8) or earlier when a point could
+/// have travelled further than the margin since the last rebuild.
+#[derive(Component, Clone, Debug, Default, PartialEq)]
+pub struct NeighbourList {
+    /// (body entity, point index) pairs, in scene order of bodies then point order.
+    pub points: Vec<(Entity, u32)>,
+    /// Largest distance any point may have moved since the rebuild (m).
+    pub travel: Real,
+    /// Steps since the last rebuild.
+    pub age: u32,
+    /// Rebuilds forced early by the travel guard.
+    pub early_rebuilds: u64,
+}
+
+/// A contact of this step between the block and a point, with its force.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointContact {
+    /// The body.
+    pub body: Entity,
+    /// The point's index in its body.
+    pub point: u32,
+    /// Force on the point (N/m); the block receives the opposite.
+    pub force: DVec2,
+    /// Tangential spring force, carried to the next step.
+    pub tangential: DVec2,
+    /// Contact point (m).
+    pub at: DVec2,
+}
+
+/// This step's contacts of the block, in neighbour-list order, and last
+/// step's (for the tangential history, kept per (block, point) pair while in
+/// contact and dropped on separation).
+#[derive(Component, Clone, Debug, Default, PartialEq)]
+pub struct BlockContacts {
+    /// Contacts of this step.
+    pub current: Vec<PointContact>,
+    /// Contacts of the previous step, sorted by (body, point).
+    pub previous: Vec<PointContact>,
+}
+
+/// Force and torque (about the centre of mass) the points exert on the block
+/// this step, summed in contact order.
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq)]
+pub struct Reaction {
+    /// Force (N/m).
+    pub force: DVec2,
+    /// Torque (N m/m).
+    pub torque: Real,
+}

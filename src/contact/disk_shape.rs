@@ -1,0 +1,64 @@
+//! A material point's DEM disk against a rigid shape, through parry's
+//! contact query (GJK/EPA for convex shapes, per part for compounds).
+
+use crate::math::{DVec2, Real};
+use parry2d_f64::math::Pose;
+use parry2d_f64::query::contact;
+use parry2d_f64::shape::{Ball, Shape};
+
+/// Geometry of a disk–shape contact.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DiskContact {
+    /// Penetration depth δ > 0 (m).
+    pub depth: Real,
+    /// Unit normal from the shape to the disk.
+    pub normal: DVec2,
+    /// Contact point: the middle of the overlap along the normal (m).
+    pub point: DVec2,
+}
+
+/// The contact of a disk (centre `center`, radius `radius`) with `shape`
+/// placed at `pose`, if they overlap.
+pub fn disk_shape_contact(
+    center: DVec2,
+    radius: Real,
+    shape: &dyn Shape,
+    pose: &Pose,
+) -> Option<DiskContact> {
+    let disk = Ball::new(radius);
+    let found = contact(&Pose::from_translation(center), &disk, pose, shape, 0.0).ok()??;
+    if found.dist >= 0.0 {
+        return None;
+    }
+    Some(DiskContact {
+        depth: -found.dist,
+        normal: found.normal2,
+        point: 0.5 * (found.point1 + found.point2),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use parry2d_f64::shape::Cuboid;
+
+    #[test]
+    fn disk_resting_into_a_box() {
+        // Box top at y = 1; disk of radius 0.1 centred at y = 1.05: 0.05 deep.
+        let ground = Cuboid::new(DVec2::new(2.0, 1.0));
+        let c = disk_shape_contact(DVec2::new(0.3, 1.05), 0.1, &ground, &Pose::IDENTITY).unwrap();
+        assert!((c.depth - 0.05).abs() < 1e-12);
+        assert!((c.normal - DVec2::Y).length() < 1e-12, "{}", c.normal);
+        assert!(disk_shape_contact(DVec2::new(0.3, 1.2), 0.1, &ground, &Pose::IDENTITY).is_none());
+    }
+
+    #[test]
+    fn normal_of_a_turned_box_is_its_face_normal() {
+        let slope = Cuboid::new(DVec2::new(5.0, 0.5));
+        let angle: Real = 0.3;
+        let pose = Pose::new(DVec2::ZERO, angle);
+        let up = DVec2::new(-angle.sin(), angle.cos());
+        let c = disk_shape_contact(up * 0.55, 0.1, &slope, &pose).unwrap();
+        assert!((c.normal - up).length() < 1e-9 && (c.depth - 0.05).abs() < 1e-9);
+    }
+}

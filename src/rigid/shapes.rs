@@ -1,0 +1,174 @@
+//! Block shapes as the scene writes them, turned into parry shapes.
+
+use crate::math::{DVec2, Real};
+use parry2d_f64::math::Pose;
+use parry2d_f64::shape::SharedShape;
+use serde::{Deserialize, Serialize};
+
+/// The shape of a rigid block in its own frame (the block's pose places
+/// that frame in the world).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum BlockShape {
+    /// A rectangle centred on the frame origin.
+    Cuboid {
+        /// Half width and half height (m), > 0.
+        half_extents: DVec2,
+    },
+    /// A convex polygon (vertices in either order).
+    Polygon {
+        /// At least three vertices (m).
+        vertices: Vec<DVec2>,
+    },
+    /// A disk centred on the frame origin.
+    Ball {
+        /// Radius (m), > 0.
+        radius: Real,
+    },
+    /// A convex polygon with rounded corners (a sphero-polygon).
+    RoundPolygon {
+        /// At least three vertices of the inner polygon (m).
+        vertices: Vec<DVec2>,
+        /// Rounding radius added all around (m), > 0.
+        border_radius: Real,
+    },
+    /// Convex parts, each placed in the block's frame, for a non-convex block
+    /// (a pile is a shaft plus a cone tip).
+    Compound {
+        /// The parts: shape, offset of its frame (m) and rotation (rad).
+        parts: Vec<(BlockShape, DVec2, Real)>,
+    },
+}
+
+impl BlockShape {
+    /// The parry shape, or what is wrong with the description.
+    pub fn build(&self) -> Result<SharedShape, String> {
+        match self {
+            Self::Cuboid { half_extents } => {
+                if half_extents.cmpgt(DVec2::ZERO).all() && half_extents.is_finite() {
+                    Ok(SharedShape::cuboid(half_extents.x, half_extents.y))
+                } else {
+                    Err(format!(
+                        "cuboid half_extents must be > 0, got {half_extents}"
+                    ))
+                }
+            }
+            Self::Polygon { vertices } => {
+                check_convex(vertices)?;
+                SharedShape::convex_polyline(vertices.clone())
+                    .ok_or_else(|| "polygon has no area".to_string())
+            }
+            Self::Ball { radius } => {
+                if radius.is_finite() && *radius > 0.0 {
+                    Ok(SharedShape::ball(*radius))
+                } else {
+                    Err(format!("ball radius must be > 0, got {radius}"))
+                }
+            }
+            Self::RoundPolygon {
+                vertices,
+                border_radius,
+            } => {
+                check_convex(vertices)?;
+                if !(border_radius.is_finite() && *border_radius > 0.0) {
+                    return Err(format!("border_radius must be > 0, got {border_radius}"));
+                }
+                SharedShape::round_convex_polyline(vertices.clone(), *border_radius)
+                    .ok_or_else(|| "polygon has no area".to_string())
+            }
+            Self::Compound { parts } => {
+                if parts.is_empty() {
+                    return Err("a compound needs at least one part".into());
+                }
+                let mut built = Vec::with_capacity(parts.len());
+                for (k, (shape, offset, angle)) in parts.iter().enumerate() {
+                    if matches!(shape, Self::Compound { .. }) {
+                        return Err(format!("part {k}: a compound cannot contain a compound"));
+                    }
+                    let part = shape.build().map_err(|e| format!("part {k}: {e}"))?;
+                    built.push((Pose::new(*offset, *angle), part));
+                }
+                Ok(SharedShape::compound(built))
+            }
+        }
+    }
+}
+
+/// Three or more finite vertices turning the same way; the message says to
+/// use a compound for a non-convex block.
+fn check_convex(vertices: &[DVec2]) -> Result<(), String> {
+    if vertices.len() < 3 || vertices.iter().any(|v| !v.is_finite()) {
+        return Err(format!(
+            "polygon needs at least 3 finite vertices, got {}",
+            vertices.len()
+        ));
+    }
+    let n = vertices.len();
+    let mut sign = 0.0;
+    for k in 0..n {
+        let (a, b, c) = (vertices[k], vertices[(k + 1) % n], vertices[(k + 2) % n]);
+        let turn = (b - a).perp_dot(c - b);
+        if turn != 0.0 {
+            if sign != 0.0 && turn.signum() != sign {
+                return Err(format!(
+                    "polygon is not convex at vertex {} ({b}): split it into convex parts with a Compound",
+                    (k + 1) % n
+                ));
+            }
+            sign = turn.signum();
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shapes_build_and_non_convex_polygons_are_refused() {
+        let square = vec![DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y];
+        assert!(
+            BlockShape::Polygon {
+                vertices: square.clone()
+            }
+            .build()
+            .is_ok()
+        );
+        let dart = vec![
+            DVec2::ZERO,
+            DVec2::new(2.0, 0.0),
+            DVec2::new(1.0, 0.3),
+            DVec2::new(1.0, 2.0),
+        ];
+        let e = BlockShape::Polygon { vertices: dart }
+            .build()
+            .err()
+            .unwrap();
+        assert!(e.contains("use") || e.contains("Compound"), "{e}");
+        let pile = BlockShape::Compound {
+            parts: vec![
+                (
+                    BlockShape::Cuboid {
+                        half_extents: DVec2::new(0.4, 3.0),
+                    },
+                    DVec2::new(0.0, 3.0),
+                    0.0,
+                ),
+                (
+                    BlockShape::Polygon {
+                        vertices: vec![
+                            DVec2::new(-0.4, 0.0),
+                            DVec2::new(0.0, -0.7),
+                            DVec2::new(0.4, 0.0),
+                        ],
+                    },
+                    DVec2::ZERO,
+                    0.0,
+                ),
+            ],
+        };
+        let shape = pile.build().unwrap();
+        let props = shape.mass_properties(1.0);
+        assert!((props.mass() - (0.8 * 6.0 + 0.5 * 0.8 * 0.7)).abs() < 1e-9);
+    }
+}
