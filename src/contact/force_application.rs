@@ -5,10 +5,11 @@ use serde::{Deserialize, Serialize};
 
 /// The imposition of contact forces on material points (scene
 /// `contact.force_application`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum ForceApplication {
     /// The force is a body force of the point, mapped with S_ip like
     /// gravity (default: cheapest, and what the paper's BodyForce runs use).
+    #[default]
     BodyForce,
     /// The force is a traction on the edge of the point's domain that faces
     /// the contact, split evenly over `points` points, each share mapped with
@@ -17,12 +18,6 @@ pub enum ForceApplication {
         /// Number of integration points on the edge (≥ 1; the paper uses 5).
         points: u32,
     },
-}
-
-impl Default for ForceApplication {
-    fn default() -> Self {
-        Self::BodyForce
-    }
 }
 
 /// The integration points of a traction (section 3.2.3, Fig. 4): the point's
