@@ -49,7 +49,10 @@ pub fn elastic_block_scene(points: usize) -> Scene {
             velocity: InitialVelocity::default(),
             initial_stress: None,
             constraints: Vec::new(),
+            contact_radius: None,
         }],
+        blocks: Vec::new(),
+        contact: Default::default(),
         probes: Vec::new(),
         output: OutputSpec::default(),
     }

@@ -1,8 +1,13 @@
 //! End of the step: finiteness check, clock, probes and energies.
 
-use crate::components::{BodyIndex, BodyName, Material, MaterialPoints, sort_into_scene_order};
+use crate::components::{
+    BlockId, BodyIndex, BodyName, Material, MaterialPoints, Pose, Reaction, RigidVelocity,
+    sort_into_scene_order,
+};
 use crate::math::Real;
-use crate::resources::{Clock, Diagnostics, EnergyLog, EnergySample, NumericalFailure, Probes};
+use crate::resources::{
+    BlockLog, BlockSample, Clock, Diagnostics, EnergyLog, EnergySample, NumericalFailure, Probes,
+};
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
@@ -111,4 +116,42 @@ pub fn record_probes_and_energy(
     energy
         .samples
         .push(EnergySample::of(clock.time, ordered, &mut scratch));
+}
+
+/// Records every block's reaction, pose and velocity with the probes' period,
+/// blocks in scene order, unless the step failed.
+///
+/// Reads: `Clock`, `Diagnostics`, `Probes::every`, block components. Writes: `BlockLog`.
+pub fn record_blocks(
+    clock: Res<Clock>,
+    diagnostics: Res<Diagnostics>,
+    probes: Res<Probes>,
+    mut log: ResMut<BlockLog>,
+    mut order: Local<Vec<(u32, Entity)>>,
+    blocks: Query<(Entity, &BlockId, &Reaction, &Pose, &RigidVelocity)>,
+) {
+    if blocks.is_empty()
+        || diagnostics.failure.is_some()
+        || !clock.step.is_multiple_of(probes.every.max(1))
+    {
+        return;
+    }
+    order.clear();
+    order.extend(blocks.iter().map(|(e, id, ..)| (id.index, e)));
+    order.sort_unstable();
+    for (_, entity) in order.iter() {
+        let Ok((_, id, reaction, pose, velocity)) = blocks.get(*entity) else {
+            continue;
+        };
+        log.samples.push(BlockSample {
+            block: id.index,
+            time: clock.time,
+            force: reaction.force,
+            torque: reaction.torque,
+            origin: pose.origin,
+            angle: pose.angle,
+            velocity: velocity.linear,
+            angular: velocity.angular,
+        });
+    }
 }

@@ -7,19 +7,27 @@
 //! A user system joins the step with `.in_set(MpmSystems::X)`.
 
 mod boundary;
+mod contact;
+mod contact_transfer;
 mod diagnostics;
 mod grid_reset;
 mod grid_to_particle;
+mod neighbours;
 mod nodal_solve;
 mod particle_to_grid;
+mod rigid_bodies;
 mod stress_update;
 
 pub use boundary::rebuild_node_constraints;
-pub use diagnostics::{advance_clock, check_finite, record_probes_and_energy};
+pub use contact::compute_rigid_contacts;
+pub use contact_transfer::transfer_contact_forces;
+pub use diagnostics::{advance_clock, check_finite, record_blocks, record_probes_and_energy};
 pub use grid_reset::reset_grid_layers;
 pub use grid_to_particle::grid_to_particle;
+pub use neighbours::rebuild_neighbour_lists;
 pub use nodal_solve::solve_nodal_momentum;
 pub use particle_to_grid::particle_to_grid;
+pub use rigid_bodies::move_rigid_blocks;
 pub use stress_update::update_stress;
 
 use crate::resources::UpdateScheme;
@@ -110,11 +118,20 @@ pub fn add_default_systems(schedule: &mut Schedule, scheme: UpdateScheme) {
     schedule.add_systems((
         reset_grid_layers.in_set(MpmSystems::GridReset),
         rebuild_node_constraints.in_set(MpmSystems::Boundary),
+        rebuild_neighbour_lists.in_set(MpmSystems::Neighbours),
+        compute_rigid_contacts.in_set(MpmSystems::Contact),
+        transfer_contact_forces.in_set(MpmSystems::ContactTransfer),
         particle_to_grid.in_set(MpmSystems::ParticleToGrid),
         update_stress(scheme).in_set(MpmSystems::StressUpdate),
         solve_nodal_momentum.in_set(MpmSystems::NodalSolve),
         grid_to_particle.in_set(MpmSystems::GridToParticle),
-        (check_finite, advance_clock, record_probes_and_energy)
+        move_rigid_blocks.in_set(MpmSystems::RigidBodies),
+        (
+            check_finite,
+            advance_clock,
+            record_probes_and_energy,
+            record_blocks,
+        )
             .chain()
             .in_set(MpmSystems::Diagnostics),
     ));

@@ -2,24 +2,28 @@
 //! layer (eqs. 7b, 8c, 8d), then the nodal velocity p_i / m_i.
 
 use crate::components::{BodyName, GridLayer, MassMomentumForce, MaterialPoints, TransferScratch};
+use crate::contact::ForceApplication;
 use crate::math::DVec2;
-use crate::resources::{Clock, Diagnostics, Gravity, Grid, NumericalFailure, Settings};
+use crate::resources::{
+    Clock, ContactSettings, Diagnostics, Gravity, Grid, NumericalFailure, Settings,
+};
 use crate::shape_functions::Stencil;
 use crate::transfer::MIN_NODES_PER_TASK;
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
 /// Computes every point's stencil at x^n, scatters S_ip m_p, S_ip m_p V_p and
-/// S_ip (m_p g + f_p,ext) to the body's layer, and sets the nodal velocity,
+/// S_ip (m_p g + f_p,ext [+ f_p,contact in `BodyForce` mode]) to the body's layer, and sets the nodal velocity,
 /// constrained. A point whose support leaves the grid is reported as a
 /// numerical failure and contributes nothing.
 ///
-/// Reads: `Grid`, `Settings`, `Gravity`, `Clock`, `BodyName`, `MaterialPoints`.
+/// Reads: `Grid`, `Settings`, `Gravity`, `ContactSettings`, `Clock`, `BodyName`, `MaterialPoints`.
 /// Writes: `TransferScratch`, `GridLayer::nodes` (mass, momentum, external force, velocity), `Diagnostics`.
 pub fn particle_to_grid(
     grid: Res<Grid>,
     settings: Res<Settings>,
     gravity: Res<Gravity>,
+    contact: Res<ContactSettings>,
     clock: Res<Clock>,
     mut diagnostics: ResMut<Diagnostics>,
     mut bodies: Query<(
@@ -32,6 +36,7 @@ pub fn particle_to_grid(
     let nodes = grid.nodes();
     let stencil_grid = grid.stencil_grid();
     let (kernel, g) = (settings.shape_function, gravity.0);
+    let body_force = contact.force_application == ForceApplication::BodyForce;
     for (name, points, mut layer, mut scratch) in &mut bodies {
         let TransferScratch {
             stencils,
@@ -54,11 +59,13 @@ pub fn particle_to_grid(
         mass_momentum.scatter(
             stencils,
             |p| {
-                (
-                    points.mass[p],
-                    points.velocity[p],
-                    points.mass[p] * g + points.external_force[p],
-                )
+                let contact = if body_force {
+                    points.contact_force[p]
+                } else {
+                    DVec2::ZERO
+                };
+                let force = points.mass[p] * g + points.external_force[p] + contact;
+                (points.mass[p], points.velocity[p], force)
             },
             |&(m, v, f), w, _| MassMomentumForce {
                 mass: w * m,

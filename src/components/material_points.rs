@@ -21,6 +21,8 @@ pub struct NewPoint {
     pub half_size: DVec2,
     /// Initial Cauchy stress (Pa, tension positive).
     pub stress: SymTensor,
+    /// Radius of the point's DEM disk (m).
+    pub contact_radius: Real,
 }
 
 /// Every point of one body, one column per field. All columns have the same
@@ -51,6 +53,11 @@ pub struct MaterialPoints {
     pub external_force: Vec<DVec2>,
     /// Half-size of the GIMP domain (undeformed).
     pub half_size: Vec<DVec2>,
+    /// Radius of the DEM disk the point is for contacts (section 3.1).
+    pub contact_radius: Vec<Real>,
+    /// Sum of this step's contact forces on the point (N/m), written by
+    /// the contact systems and reset by them each step.
+    pub contact_force: Vec<DVec2>,
 }
 
 impl MaterialPoints {
@@ -77,6 +84,8 @@ impl MaterialPoints {
         self.strain.push(SymTensor::ZERO);
         self.external_force.push(DVec2::ZERO);
         self.half_size.push(p.half_size);
+        self.contact_radius.push(p.contact_radius);
+        self.contact_force.push(DVec2::ZERO);
     }
 
     /// Displacement of point `p` from its initial position.

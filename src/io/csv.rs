@@ -1,6 +1,6 @@
 //! CSV time series: probes and energies.
 
-use crate::resources::{EnergyLog, Probes};
+use crate::resources::{BlockLog, EnergyLog, Probes};
 use std::io::Write;
 use std::path::Path;
 
@@ -42,6 +42,32 @@ pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
             s.kinetic,
             s.strain,
             s.kinetic + s.strain
+        )?;
+    }
+    out.flush()
+}
+
+/// Writes `blocks.csv`: one row per block and sample time, columns block,
+/// time, fx, fy, torque (the points' reaction on the block), x, y, angle
+/// (frame origin, rad), vx, vy, omega (centre of mass).
+pub fn write_blocks(path: &Path, log: &BlockLog) -> std::io::Result<()> {
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(out, "block,time,fx,fy,torque,x,y,angle,vx,vy,omega")?;
+    for s in &log.samples {
+        let name = log.names.get(s.block as usize).map_or("?", String::as_str);
+        writeln!(
+            out,
+            "{name},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+            s.time,
+            s.force.x,
+            s.force.y,
+            s.torque,
+            s.origin.x,
+            s.origin.y,
+            s.angle,
+            s.velocity.x,
+            s.velocity.y,
+            s.angular
         )?;
     }
     out.flush()

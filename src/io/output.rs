@@ -6,7 +6,7 @@ use super::plot::{Series, SeriesStyle, plot_points, plot_series};
 use super::vtk::{PointFrame, write_collection, write_point_frame};
 use crate::components::{BodyIndex, MaterialPoints};
 use crate::math::{DVec2, Real};
-use crate::resources::{EnergyLog, Grid, Probes};
+use crate::resources::{BlockLog, EnergyLog, Grid, Probes};
 use crate::simulation::Simulation;
 use std::path::{Path, PathBuf};
 
@@ -76,6 +76,10 @@ impl RunOutput {
         let energy = world.resource::<EnergyLog>();
         csv::write_probes(&self.dir.join("probes.csv"), probes)?;
         csv::write_energy(&self.dir.join("energy.csv"), energy)?;
+        let blocks = world.resource::<BlockLog>();
+        if !blocks.names.is_empty() {
+            csv::write_blocks(&self.dir.join("blocks.csv"), blocks)?;
+        }
         self.plot_energy(energy)?;
         self.plot_probes(probes)?;
         self.plot_snapshot(sim.name(), world.resource::<Grid>())

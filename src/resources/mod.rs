@@ -2,13 +2,15 @@
 //! gravity) and the run's records (probes, energy, diagnostics).
 
 mod clock;
+mod contact_settings;
 mod diagnostics;
 mod grid;
 mod records;
 mod settings;
 
 pub use clock::Clock;
+pub use contact_settings::ContactSettings;
 pub use diagnostics::{Diagnostics, NumericalFailure};
 pub use grid::{EdgeCondition, EdgeConditions, Grid};
-pub use records::{EnergyLog, EnergySample, Probe, ProbeSample, Probes};
+pub use records::{BlockLog, BlockSample, EnergyLog, EnergySample, Probe, ProbeSample, Probes};
 pub use settings::{Gravity, Settings, UpdateScheme};

@@ -111,3 +111,33 @@ pub struct EnergyLog {
     /// Samples in time order.
     pub samples: Vec<EnergySample>,
 }
+
+/// One recorded state of a rigid block.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BlockSample {
+    /// Index of the block in the scene.
+    pub block: u32,
+    /// Simulated time (s).
+    pub time: Real,
+    /// Reaction force of the points on the block (N/m).
+    pub force: DVec2,
+    /// Reaction torque about the centre of mass (N m/m).
+    pub torque: Real,
+    /// Frame origin (m).
+    pub origin: DVec2,
+    /// Rotation (rad).
+    pub angle: Real,
+    /// Velocity of the centre of mass (m/s).
+    pub velocity: DVec2,
+    /// Angular velocity (rad/s).
+    pub angular: Real,
+}
+
+/// Reactions and motion of every block, recorded with the probes' period.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct BlockLog {
+    /// Block names by scene index.
+    pub names: Vec<String>,
+    /// Samples in time order, blocks in scene order within a time.
+    pub samples: Vec<BlockSample>,
+}

@@ -93,6 +93,57 @@ impl BlockShape {
     }
 }
 
+impl BlockShape {
+    /// Closed outlines of the shape in its frame, for pictures (VTK, PNG):
+    /// one per convex part; disks and rounded corners as 32-gons.
+    pub fn outline(&self) -> Vec<Vec<DVec2>> {
+        const SEGMENTS: usize = 32;
+        let circle = |center: DVec2, radius: Real| -> Vec<DVec2> {
+            (0..SEGMENTS)
+                .map(|k| {
+                    center
+                        + radius
+                            * DVec2::from_angle(
+                                k as Real * std::f64::consts::TAU / SEGMENTS as Real,
+                            )
+                })
+                .collect()
+        };
+        match self {
+            Self::Cuboid { half_extents: h } => {
+                vec![vec![
+                    DVec2::new(-h.x, -h.y),
+                    DVec2::new(h.x, -h.y),
+                    DVec2::new(h.x, h.y),
+                    DVec2::new(-h.x, h.y),
+                ]]
+            }
+            Self::Polygon { vertices } => vec![vertices.clone()],
+            Self::Ball { radius } => vec![circle(DVec2::ZERO, *radius)],
+            Self::RoundPolygon {
+                vertices,
+                border_radius,
+            } => {
+                // The rounded outline lies within the union of disks on the
+                // vertices and the offset edges; drawing each vertex's disk
+                // next to the polygon is enough for a picture.
+                let mut parts = vec![vertices.clone()];
+                parts.extend(vertices.iter().map(|v| circle(*v, *border_radius)));
+                parts
+            }
+            Self::Compound { parts } => parts
+                .iter()
+                .flat_map(|(shape, offset, angle)| {
+                    let turn = DVec2::from_angle(*angle);
+                    shape.outline().into_iter().map(move |line| {
+                        line.into_iter().map(|p| *offset + turn.rotate(p)).collect()
+                    })
+                })
+                .collect(),
+        }
+    }
+}
+
 /// Three or more finite vertices turning the same way; the message says to
 /// use a compound for a non-convex block.
 fn check_convex(vertices: &[DVec2]) -> Result<(), String> {

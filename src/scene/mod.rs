@@ -9,6 +9,7 @@ mod location;
 pub mod rules;
 mod shapes;
 mod spawn;
+mod spawn_blocks;
 mod validate;
 mod velocity_field;
 
@@ -17,10 +18,13 @@ pub use shapes::Shape;
 pub use spawn::spawn_scene;
 pub use velocity_field::VelocityField;
 
-use crate::components::RegionConstraint;
+use crate::components::{RegionConstraint, RigidVelocity};
+use crate::contact::ContactLaw;
 use crate::materials::MaterialModel;
 use crate::math::{DVec2, Real};
+use crate::resources::ContactSettings;
 use crate::resources::{EdgeConditions, Settings};
+use crate::rigid::BlockShape;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -45,6 +49,12 @@ pub struct Scene {
     pub materials: Vec<MaterialSpec>,
     /// Deformable bodies, in the order they are spawned.
     pub bodies: Vec<BodySpec>,
+    /// Rigid blocks, in the order they are spawned. Default: none.
+    #[serde(default)]
+    pub blocks: Vec<BlockSpec>,
+    /// Contact settings. Default: see [`ContactSettings`].
+    #[serde(default)]
+    pub contact: ContactSettings,
     /// Watched points. Default: none.
     #[serde(default)]
     pub probes: Vec<ProbeSpec>,
@@ -129,6 +139,47 @@ pub struct BodySpec {
     /// Velocity constraints on nodes of this body's layer. Default: none.
     #[serde(default)]
     pub constraints: Vec<RegionConstraint>,
+    /// Radius of each point's DEM disk (m), > 0. Default: half the point
+    /// spacing, h / (2 n), so the disks reach the body's outline.
+    #[serde(default)]
+    pub contact_radius: Option<Real>,
+}
+
+/// A rigid block.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BlockSpec {
+    /// Unique name.
+    pub name: String,
+    /// Geometry in the block's frame.
+    pub shape: BlockShape,
+    /// Position of the block's frame origin (m). Default (0, 0).
+    #[serde(default)]
+    pub position: DVec2,
+    /// Rotation of the block's frame (degrees, counter-clockwise). Default 0.
+    #[serde(default)]
+    pub angle: Real,
+    /// How the block moves.
+    pub motion: MotionSpec,
+    /// The DEM law of its contacts with material points.
+    pub contact: ContactLaw,
+}
+
+/// How a block moves.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum MotionSpec {
+    /// Never moves.
+    Fixed,
+    /// Moves with a prescribed velocity of its centre of mass and spin.
+    Kinematic(RigidVelocity),
+    /// Moves under reactions and gravity; mass and inertia from a density (kg/m³).
+    Dynamic {
+        /// Density (kg/m³), > 0.
+        density: Real,
+        /// Initial velocity. Default: at rest.
+        #[serde(default)]
+        velocity: RigidVelocity,
+    },
 }
 
 fn default_points_per_cell() -> u32 {

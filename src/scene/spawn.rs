@@ -6,7 +6,9 @@ use crate::components::{
     TransferScratch,
 };
 use crate::math::{DVec2, Real, SymTensor};
-use crate::resources::{Clock, Diagnostics, EnergyLog, EnergySample, Gravity, Grid, Probe, Probes};
+use crate::resources::{
+    BlockLog, Clock, Diagnostics, EnergyLog, EnergySample, Gravity, Grid, Probe, Probes,
+};
 use bevy_ecs::prelude::*;
 
 /// Builds the world of a scene that passed [`Scene::validate`]: resources,
@@ -74,6 +76,9 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
             ));
         }
     }
+    warnings.extend(super::spawn_blocks::spawn_blocks(
+        scene, &mut world, &bodies,
+    )?);
     let mut probes = Probes {
         probes: Vec::new(),
         every: ((scene.output.probe_interval_or_default(clock.end) / clock.dt).round() as u64)
@@ -116,6 +121,11 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
     world.insert_resource(grid);
     world.insert_resource(clock);
     world.insert_resource(scene.settings);
+    world.insert_resource(scene.contact);
+    world.insert_resource(BlockLog {
+        names: scene.blocks.iter().map(|b| b.name.clone()).collect(),
+        samples: Vec::with_capacity(samples * scene.blocks.len()),
+    });
     world.insert_resource(Gravity(scene.gravity));
     world.insert_resource(Diagnostics::default());
     world.insert_resource(probes);
@@ -162,6 +172,7 @@ fn fill_body(
             None => SymTensor::ZERO,
         };
         points.push(NewPoint {
+            contact_radius: spec.contact_radius.unwrap_or(h / (2.0 * n)),
             position,
             velocity,
             volume,

@@ -1,7 +1,8 @@
 //! Consistency checks of a whole scene: ranges, names and geometry.
 
 use super::{
-    InitialStress, InitialVelocity, Scene, SceneError, SourceLocation, VelocityField, rules,
+    InitialStress, InitialVelocity, MotionSpec, Scene, SceneError, SourceLocation, VelocityField,
+    rules,
 };
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -200,6 +201,44 @@ impl Scene {
             }
         }
 
+        if let Some(r) = contact_radius_error(self) {
+            return Err(invalid(&["bodies", &quoted(&r.0), "contact_radius"], r.1));
+        }
+        let mut block_names = BTreeSet::new();
+        for block in &self.blocks {
+            let name = quoted(&block.name);
+            let fail = |field: &str, message: String| invalid(&["blocks", &name, field], message);
+            if !block_names.insert(block.name.as_str()) {
+                return Err(fail(
+                    "name",
+                    format!("block name '{}' is used twice", block.name),
+                ));
+            }
+            block
+                .shape
+                .build()
+                .map_err(|e| fail("shape", format!("block '{}': {e}", block.name)))?;
+            if !(block.position.is_finite() && block.angle.is_finite()) {
+                return Err(fail(
+                    "position",
+                    format!("block '{}': position and angle must be finite", block.name),
+                ));
+            }
+            block
+                .contact
+                .check()
+                .map_err(|e| fail("contact", format!("block '{}': {e}", block.name)))?;
+            if let MotionSpec::Dynamic { density, .. } = block.motion {
+                rules::positive(density).map_err(|e| {
+                    fail("density", format!("block '{}': density: {e}", block.name))
+                })?;
+            }
+        }
+        if let Some(margin) = self.contact.margin {
+            rules::positive(margin)
+                .map_err(|e| invalid(&["contact", "margin"], format!("contact.margin: {e}")))?;
+        }
+
         let mut probe_names = BTreeSet::new();
         for p in &self.probes {
             let at = ["probes", &quoted(&p.name)];
@@ -236,4 +275,18 @@ impl Scene {
         }
         Ok(())
     }
+}
+
+/// The first body whose contact radius is given but not positive: its name
+/// and the message.
+fn contact_radius_error(scene: &Scene) -> Option<(String, String)> {
+    scene.bodies.iter().find_map(|b| {
+        let r = b.contact_radius?;
+        rules::positive(r).err().map(|e| {
+            (
+                b.name.clone(),
+                format!("body '{}': contact_radius: {e}", b.name),
+            )
+        })
+    })
 }

@@ -1,0 +1,34 @@
+//! Settings of the DEM contacts.
+
+use crate::contact::ForceApplication;
+use crate::math::Real;
+use bevy_ecs::prelude::Resource;
+use serde::{Deserialize, Serialize};
+
+/// How contacts are searched and imposed (scene `contact`).
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ContactSettings {
+    /// Steps between neighbour-list rebuilds (Algorithm 1's `iterperiod`).
+    /// Default (`None`): 10, a common DEM choice; the travel guard rebuilds
+    /// earlier whenever a point could have crossed the margin.
+    pub iter_period: Option<u32>,
+    /// Extra distance around a block's bounding box in which points are
+    /// listed (m). Default (`None`): one cell, so a rebuild every 10 steps
+    /// is enough while points move less than a tenth of a cell per step.
+    pub margin: Option<Real>,
+    /// Body force (default) or traction (section 3.2.3).
+    pub force_application: ForceApplication,
+}
+
+impl ContactSettings {
+    /// The rebuild period in steps.
+    pub fn period(&self) -> u32 {
+        self.iter_period.unwrap_or(10).max(1)
+    }
+
+    /// The list margin for a grid of cell size `h`.
+    pub fn margin_or(&self, h: Real) -> Real {
+        self.margin.unwrap_or(h)
+    }
+}

@@ -1,0 +1,106 @@
+//! Spawning the rigid blocks of a validated scene, with the warnings a user
+//! needs before running (blocks overlapping bodies, a time step above the
+//! contact stability limit).
+
+use super::{MotionSpec, Scene, SceneError, SourceLocation};
+use crate::components::{
+    BlockContactLaw, BlockContacts, BlockId, MaterialPoints, NeighbourList, Pose, Reaction,
+    RigidMass, RigidMotion, RigidShape, RigidVelocity,
+};
+use crate::contact::disk_shape_contact;
+use crate::math::Real;
+use bevy_ecs::prelude::*;
+
+/// Overlap between a block and a body's disks at the start above which a
+/// warning is given: a tenth of the disk radius, more than the few
+/// per-mille a body placed exactly on a block shows through round-off.
+const OVERLAP_WARNING_FRACTION: Real = 0.1;
+
+/// Spawns one entity per block in scene order; `bodies` are the body
+/// entities in scene order. Returns the warnings.
+pub fn spawn_blocks(
+    scene: &Scene,
+    world: &mut World,
+    bodies: &[Entity],
+) -> Result<Vec<String>, SceneError> {
+    let mut warnings = Vec::new();
+    for (index, spec) in scene.blocks.iter().enumerate() {
+        let invalid = |message: String| SceneError::Invalid {
+            location: SourceLocation::default(),
+            message,
+        };
+        let shape = spec
+            .shape
+            .build()
+            .map_err(|e| invalid(format!("block '{}': {e}", spec.name)))?;
+        let pose = Pose {
+            origin: spec.position,
+            angle: spec.angle.to_radians(),
+        };
+        let (motion, density, velocity) = match &spec.motion {
+            MotionSpec::Fixed => (RigidMotion::Fixed, 1.0, RigidVelocity::default()),
+            MotionSpec::Kinematic(v) => (RigidMotion::Kinematic, 1.0, *v),
+            MotionSpec::Dynamic { density, velocity } => {
+                (RigidMotion::Dynamic, *density, *velocity)
+            }
+        };
+        let props = shape.mass_properties(density);
+        let mass = RigidMass {
+            mass: props.mass(),
+            inertia: props.principal_inertia(),
+            local_center: props.local_com,
+        };
+        for &body in bodies {
+            let Some(points) = world.get::<MaterialPoints>(body) else {
+                continue;
+            };
+            warnings.extend(overlap_warning(&spec.name, points, &shape, &pose));
+            let lightest = points.mass.iter().copied().fold(Real::INFINITY, Real::min);
+            let limit = 2.0 * (lightest / spec.contact.normal_stiffness).sqrt();
+            if scene.time.dt > limit {
+                warnings.push(format!(
+                    "time.dt = {:e} s exceeds the contact stability limit 2 sqrt(m_p / k_n) = {limit:e} s of block '{}' (lightest point {lightest:e} kg/m)",
+                    scene.time.dt, spec.name
+                ));
+            }
+        }
+        world.spawn((
+            BlockId {
+                name: spec.name.clone(),
+                index: index as u32,
+            },
+            RigidShape(shape),
+            pose,
+            velocity,
+            motion,
+            mass,
+            BlockContactLaw(spec.contact),
+            NeighbourList::default(),
+            BlockContacts::default(),
+            Reaction::default(),
+        ));
+    }
+    Ok(warnings)
+}
+
+/// A warning with the deepest overlap of the body's disks into the block,
+/// if it exceeds [`OVERLAP_WARNING_FRACTION`] of the disk radius.
+fn overlap_warning(
+    block: &str,
+    points: &MaterialPoints,
+    shape: &parry2d_f64::shape::SharedShape,
+    pose: &Pose,
+) -> Option<String> {
+    let parry_pose = pose.to_parry();
+    let (depth, radius) = (0..points.len())
+        .filter_map(|p| {
+            let r = points.contact_radius[p];
+            disk_shape_contact(points.position[p], r, &**shape, &parry_pose).map(|c| (c.depth, r))
+        })
+        .fold((0.0, 0.0), |worst, c| if c.0 > worst.0 { c } else { worst });
+    (depth > OVERLAP_WARNING_FRACTION * radius).then(|| {
+        format!(
+            "block '{block}' overlaps a body at the start by {depth:e} m (disk radius {radius:e} m)"
+        )
+    })
+}

@@ -1,0 +1,73 @@
+//! Algorithm 1, line 10: contact forces to the grid (paper section 3.2.3).
+
+use crate::components::{BlockContacts, BlockId, GridLayer, MaterialPoints};
+use crate::contact::{ForceApplication, traction_points};
+use crate::math::{DVec2, Real};
+use crate::resources::{ContactSettings, Grid};
+use bevy_ecs::prelude::*;
+
+/// In `Traction` mode, splits every contact force over the integration
+/// points of the contact edge of the point's domain and adds each share to
+/// the body's layer with the hat functions N_i (eq. 7b's traction term).
+/// Contacts are visited in block order, then in each block's contact order,
+/// so the nodal sums are formed in a fixed order. In `BodyForce` mode the
+/// particle-to-grid transfer maps `MaterialPoints::contact_force` with S_ip
+/// instead, and this system does nothing.
+///
+/// Reads: `Grid`, `ContactSettings`, `BlockContacts`, `MaterialPoints` (position, half-size).
+/// Writes: `GridLayer::nodes` (external force).
+pub fn transfer_contact_forces(
+    grid: Res<Grid>,
+    settings: Res<ContactSettings>,
+    mut order: Local<Vec<(u32, Entity)>>,
+    blocks: Query<(Entity, &BlockId, &BlockContacts)>,
+    mut bodies: Query<(&MaterialPoints, &mut GridLayer)>,
+) {
+    let ForceApplication::Traction { points: count } = settings.force_application else {
+        return;
+    };
+    let count = count.max(1);
+    order.clear();
+    order.extend(blocks.iter().map(|(e, id, _)| (id.index, e)));
+    order.sort_unstable();
+    for (_, entity) in order.iter() {
+        let Ok((_, _, contacts)) = blocks.get(*entity) else {
+            continue;
+        };
+        for contact in &contacts.current {
+            let Ok((points, mut layer)) = bodies.get_mut(contact.body) else {
+                continue;
+            };
+            let magnitude = contact.force.length();
+            if magnitude == 0.0 {
+                continue;
+            }
+            let p = contact.point as usize;
+            let direction = contact.force / magnitude;
+            let share = contact.force / count as Real;
+            for at in traction_points(points.position[p], points.half_size[p].x, direction, count) {
+                add_with_hat_functions(&grid, &mut layer, at, share);
+            }
+        }
+    }
+}
+
+/// Adds `force` to the four nodes of the cell holding `at`, weighted by the
+/// bilinear hat functions (a partition of unity, so the whole force arrives).
+fn add_with_hat_functions(grid: &Grid, layer: &mut GridLayer, at: DVec2, force: DVec2) {
+    let [nx, ny] = grid.nodes();
+    let s = (at - grid.origin) / grid.cell_size;
+    let i = (s.x.floor().max(0.0) as usize).min(nx - 2);
+    let j = (s.y.floor().max(0.0) as usize).min(ny - 2);
+    let fx = (s.x - i as Real).clamp(0.0, 1.0);
+    let fy = (s.y - j as Real).clamp(0.0, 1.0);
+    let weights = [
+        (0, 0, (1.0 - fx) * (1.0 - fy)),
+        (1, 0, fx * (1.0 - fy)),
+        (0, 1, (1.0 - fx) * fy),
+        (1, 1, fx * fy),
+    ];
+    for (di, dj, w) in weights {
+        layer.nodes[(j + dj) * nx + i + di].external_force += w * force;
+    }
+}

@@ -1,0 +1,82 @@
+//! Algorithm 1, lines 5–8: the neighbour lists of the rigid blocks.
+
+use crate::components::{
+    BodyIndex, MaterialPoints, NeighbourList, Pose, RigidShape, RigidVelocity,
+    sort_into_scene_order,
+};
+use crate::math::{DVec2, Real};
+use crate::resources::{Clock, ContactSettings, Grid};
+use crate::transfer::MIN_POINTS_PER_TASK;
+use bevy_ecs::prelude::*;
+use rayon::prelude::*;
+
+/// Rebuilds a block's list of nearby points every `iter_period` steps, or
+/// earlier when the points and the block together could have moved by the
+/// margin since the last rebuild (the travel guard; counted in
+/// `NeighbourList::early_rebuilds`). Listed are the points whose disk
+/// reaches the block's bounding box grown by the margin, bodies in scene
+/// order, points in order.
+///
+/// Reads: `Clock`, `Grid`, `ContactSettings`, `MaterialPoints`, block pose,
+/// velocity and shape. Writes: `NeighbourList`.
+pub fn rebuild_neighbour_lists(
+    clock: Res<Clock>,
+    grid: Res<Grid>,
+    settings: Res<ContactSettings>,
+    mut order: Local<Vec<(BodyIndex, Entity)>>,
+    bodies: Query<(Entity, &BodyIndex, &MaterialPoints)>,
+    mut blocks: Query<(&RigidShape, &Pose, &RigidVelocity, &mut NeighbourList)>,
+) {
+    if blocks.is_empty() {
+        return;
+    }
+    sort_into_scene_order(&mut order, bodies.iter().map(|(e, i, _)| (*i, e)));
+    let fastest_point = bodies
+        .iter()
+        .map(|(_, _, p)| {
+            p.velocity
+                .par_chunks(MIN_POINTS_PER_TASK)
+                .map(|c| c.iter().fold(0.0, |m: Real, v| m.max(v.length())))
+                .reduce(|| 0.0, Real::max)
+        })
+        .fold(0.0, Real::max);
+    let margin = settings.margin_or(grid.cell_size);
+    for (shape, pose, velocity, mut list) in &mut blocks {
+        let aabb = shape.0.compute_aabb(&pose.to_parry());
+        let reach = (aabb.maxs - aabb.mins).length();
+        let block_speed = velocity.linear.length() + velocity.angular.abs() * reach;
+        list.travel += (fastest_point + block_speed) * clock.dt;
+        // Age 0: never built (a new block).
+        let due = list.age == 0 || list.age >= settings.period();
+        let unsafe_travel = list.travel >= margin;
+        if !(due || unsafe_travel) {
+            list.age += 1;
+            continue;
+        }
+        if unsafe_travel && !due {
+            list.early_rebuilds += 1;
+        }
+        let (lo, hi) = (
+            aabb.mins - DVec2::splat(margin),
+            aabb.maxs + DVec2::splat(margin),
+        );
+        list.points.clear();
+        for (_, entity) in order.iter() {
+            let Ok((_, _, points)) = bodies.get(*entity) else {
+                continue;
+            };
+            for (p, (x, r)) in points
+                .position
+                .iter()
+                .zip(&points.contact_radius)
+                .enumerate()
+            {
+                if x.cmpge(lo - *r).all() && x.cmple(hi + *r).all() {
+                    list.points.push((*entity, p as u32));
+                }
+            }
+        }
+        list.age = 1;
+        list.travel = 0.0;
+    }
+}
