@@ -79,3 +79,25 @@ fn both_force_applications_deliver_the_whole_contact_force() {
         );
     }
 }
+
+#[test]
+fn block_slides_down_a_slope_at_the_friction_limited_acceleration() {
+    let sim = common::run_scene(&common::load_scene("sliding_45.ron"));
+    let g: Real = 9.81;
+    let theta = std::f64::consts::FRAC_PI_4;
+    let a = g * (theta.sin() - 0.5 * theta.cos());
+    let last = *common::probe_samples(&sim, "centre")
+        .last()
+        .expect("samples");
+    let t = last.time;
+    let (s, v) = (last.displacement.x, last.velocity.x);
+    let (s_exact, v_exact) = (0.5 * a * t * t, a * t);
+    println!(
+        "sliding 45: s = {s:.4} m vs {s_exact:.4} m ({:+.3}%), v = {v:.4} m/s vs {v_exact:.4} m/s ({:+.3}%)",
+        100.0 * (s / s_exact - 1.0),
+        100.0 * (v / v_exact - 1.0)
+    );
+    // Targets of the issue: 2% on both (no over-damping).
+    assert!((s / s_exact - 1.0).abs() <= 0.02);
+    assert!((v / v_exact - 1.0).abs() <= 0.02);
+}
