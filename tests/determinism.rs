@@ -41,3 +41,11 @@ fn same_state_for_one_and_two_threads() {
     assert_eq!(one, two, "1 thread {one:016x} vs 2 threads {two:016x}");
     assert_eq!(two, again, "rerun differs");
 }
+
+#[test]
+fn contacts_give_the_same_state_for_one_and_two_threads() {
+    let scene = common::load_scene("sliding_45.ron");
+    let one = common::with_threads(1, || hash_after(&scene, 300));
+    let two = common::with_threads(2, || hash_after(&scene, 300));
+    assert_eq!(one, two, "1 thread {one:016x} vs 2 threads {two:016x}");
+}

@@ -20,6 +20,20 @@ pub struct BlockId {
 #[derive(Component, Clone)]
 pub struct RigidShape(pub SharedShape);
 
+/// Closed outlines of the block in its frame, for pictures.
+#[derive(Component, Clone, Debug, Default, PartialEq)]
+pub struct BlockOutline(pub Vec<Vec<DVec2>>);
+
+impl BlockOutline {
+    /// The outlines placed in the world at `pose`.
+    pub fn in_world(&self, pose: &Pose) -> impl Iterator<Item = Vec<DVec2>> + '_ {
+        let pose = *pose;
+        self.0
+            .iter()
+            .map(move |line| line.iter().map(|p| pose.origin + pose.rotate(*p)).collect())
+    }
+}
+
 /// Where the block's frame is: origin (m) and rotation (rad, counter-clockwise).
 #[derive(Component, Clone, Copy, Debug, Default, PartialEq)]
 pub struct Pose {

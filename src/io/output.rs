@@ -3,8 +3,8 @@
 
 use super::csv;
 use super::plot::{Series, SeriesStyle, plot_points, plot_series};
-use super::vtk::{PointFrame, write_collection, write_point_frame};
-use crate::components::{BodyIndex, MaterialPoints};
+use super::vtk::{PointFrame, write_collection, write_outlines, write_point_frame};
+use crate::components::{BlockId, BlockOutline, BodyIndex, MaterialPoints, Pose};
 use crate::math::{DVec2, Real};
 use crate::resources::{BlockLog, EnergyLog, Grid, Probes};
 use crate::simulation::Simulation;
@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 
 /// Writes a run's results into one folder:
 /// * `vtk/points_NNNNN.vtu` every frame interval and `points.pvd` (open this in ParaView);
+/// * with rigid blocks, their outlines: `vtk/blocks_NNNNN.vtu` and `blocks.pvd`, and `blocks.csv`;
 /// * `probes.csv`, `energy.csv`;
 /// * `snapshot.png` (final state coloured by displacement magnitude),
 ///   `energy.png` and `probe_<name>_{velocity,displacement,stress}.png`.
@@ -19,6 +20,7 @@ pub struct RunOutput {
     dir: PathBuf,
     frame_every: u64,
     frames: Vec<(Real, String)>,
+    block_frames: Vec<(Real, String)>,
     buffers: FrameBuffers,
 }
 
@@ -31,6 +33,8 @@ struct FrameBuffers {
     stresses: Vec<[Real; 4]>,
     body: Vec<u32>,
     marker: Real,
+    /// Outlines of the rigid blocks in the world, blocks in scene order.
+    outlines: Vec<Vec<DVec2>>,
 }
 
 impl RunOutput {
@@ -43,6 +47,7 @@ impl RunOutput {
             dir: dir.to_path_buf(),
             frame_every,
             frames: Vec::new(),
+            block_frames: Vec::new(),
             buffers: FrameBuffers::default(),
         };
         output.write_frame(sim)?;
@@ -71,6 +76,9 @@ impl RunOutput {
             self.write_frame(sim)?;
         }
         write_collection(&self.dir.join("points.pvd"), &self.frames)?;
+        if !self.block_frames.is_empty() {
+            write_collection(&self.dir.join("blocks.pvd"), &self.block_frames)?;
+        }
         let world = sim.world();
         let probes = world.resource::<Probes>();
         let energy = world.resource::<EnergyLog>();
@@ -98,6 +106,12 @@ impl RunOutput {
         let name = format!("points_{:05}.vtu", self.frames.len());
         write_point_frame(&self.dir.join("vtk").join(&name), &frame)?;
         self.frames.push((sim.clock().time, format!("vtk/{name}")));
+        if !b.outlines.is_empty() {
+            let name = format!("blocks_{:05}.vtu", self.block_frames.len());
+            write_outlines(&self.dir.join("vtk").join(&name), &b.outlines)?;
+            self.block_frames
+                .push((sim.clock().time, format!("vtk/{name}")));
+        }
         Ok(())
     }
 
@@ -208,7 +222,7 @@ impl RunOutput {
             &magnitude,
             b.marker,
             (grid.origin, grid.max()),
-            &[],
+            &b.outlines,
         )
     }
 }
@@ -222,6 +236,14 @@ impl FrameBuffers {
         self.stresses.clear();
         self.body.clear();
         self.marker = Real::INFINITY;
+        self.outlines.clear();
+        let mut query = sim.world_mut().query::<(&BlockId, &BlockOutline, &Pose)>();
+        let mut blocks: Vec<_> = query
+            .iter(sim.world())
+            .map(|(id, outline, pose)| (id.index, outline.in_world(pose).collect::<Vec<_>>()))
+            .collect();
+        blocks.sort_by_key(|b| b.0);
+        self.outlines.extend(blocks.into_iter().flat_map(|b| b.1));
         for (entity, _) in sim.bodies() {
             let world = sim.world();
             let (Some(index), Some(points)) = (

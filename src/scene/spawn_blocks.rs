@@ -4,8 +4,8 @@
 
 use super::{MotionSpec, Scene, SceneError, SourceLocation};
 use crate::components::{
-    BlockContactLaw, BlockContacts, BlockId, MaterialPoints, NeighbourList, Pose, Reaction,
-    RigidMass, RigidMotion, RigidShape, RigidVelocity,
+    BlockContactLaw, BlockContacts, BlockId, BlockOutline, MaterialPoints, NeighbourList, Pose,
+    Reaction, RigidMass, RigidMotion, RigidShape, RigidVelocity,
 };
 use crate::contact::disk_shape_contact;
 use crate::math::Real;
@@ -69,6 +69,7 @@ pub fn spawn_blocks(
                 name: spec.name.clone(),
                 index: index as u32,
             },
+            BlockOutline(spec.shape.outline()),
             RigidShape(shape),
             pose,
             velocity,
