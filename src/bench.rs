@@ -1,11 +1,14 @@
 //! The standard throughput benchmark: an elastic block settling under
 //! gravity on a fixed base, sized by its number of points.
 
+use crate::contact::ContactLaw;
 use crate::materials::{LinearElastic, MaterialModel};
 use crate::math::{DVec2, Real};
 use crate::resources::{EdgeCondition, EdgeConditions, Settings};
+use crate::rigid::BlockShape;
 use crate::scene::{
-    BodySpec, GridSpec, InitialVelocity, MaterialSpec, OutputSpec, Scene, Shape, TimeSpec,
+    BlockSpec, BodySpec, GridSpec, InitialVelocity, MaterialSpec, MotionSpec, OutputSpec, Scene,
+    Shape, TimeSpec,
 };
 use crate::simulation::{Simulation, StepError};
 use std::time::Instant;
@@ -56,6 +59,39 @@ pub fn elastic_block_scene(points: usize) -> Scene {
         probes: Vec::new(),
         output: OutputSpec::default(),
     }
+}
+
+/// The same block resting through DEM contacts on a fixed rigid ground
+/// block instead of the grid's fixed base: the contact benchmark (its
+/// neighbour lists, contact forces and reactions cost what this scene adds
+/// over [`elastic_block_scene`]).
+pub fn elastic_block_on_ground_scene(points: usize) -> Scene {
+    let mut scene = elastic_block_scene(points);
+    let h = scene.grid.cell_size;
+    let width = scene.grid.cells.0 as Real * h;
+    scene.name = Some(format!("bench_block_on_ground_{points}"));
+    scene.grid.edges = EdgeConditions::default();
+    scene.grid.cells.1 += 1;
+    if let Shape::Rectangle { min, max } = &mut scene.bodies[0].shape {
+        min.y += h;
+        max.y += h;
+    }
+    scene.blocks.push(BlockSpec {
+        name: "ground".into(),
+        shape: BlockShape::Cuboid {
+            half_extents: DVec2::new(0.5 * width, 0.5 * h),
+        },
+        position: DVec2::new(0.5 * width, 0.5 * h),
+        angle: 0.0,
+        motion: MotionSpec::Fixed,
+        contact: ContactLaw {
+            normal_stiffness: 1e8,
+            tangential_stiffness: 1e8,
+            friction: 0.5,
+            normal_damping: 0.0,
+        },
+    });
+    scene
 }
 
 /// The measured throughput of a run of `steps` steps.

@@ -37,7 +37,7 @@ enum Command {
         /// The RON scene file.
         scene: PathBuf,
     },
-    /// Measure particle-updates per second on the standard elastic block.
+    /// Measure particle-updates per second on the standard elastic block, without and with a rigid ground contact.
     Bench {
         /// Number of material points (approximate: the block is square).
         #[arg(long, default_value_t = 40_000)]
@@ -174,16 +174,33 @@ fn progress_bar(total: u64, quiet: bool) -> ProgressBar {
 }
 
 fn run_bench(points: usize, steps: u64) -> Result<(), String> {
-    let scene = bench::elastic_block_scene(points);
-    let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
-    let t = bench::measure(&mut sim, 5, steps).map_err(|e| e.to_string())?;
+    let scenes = [
+        (
+            "elastic block on the grid's fixed base",
+            bench::elastic_block_scene(points),
+        ),
+        (
+            "elastic block on a rigid ground (DEM contact)",
+            bench::elastic_block_on_ground_scene(points),
+        ),
+    ];
+    let mut rates = Vec::new();
+    for (label, scene) in scenes {
+        let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
+        let t = bench::measure(&mut sim, 5, steps).map_err(|e| e.to_string())?;
+        println!(
+            "{label}: {} points, {} steps, {} threads: {:.3} s, {:.2} M particle-updates/s",
+            t.points,
+            t.steps,
+            rayon::current_num_threads(),
+            t.seconds,
+            t.updates_per_second() / 1e6
+        );
+        rates.push(t.seconds / t.steps as f64);
+    }
     println!(
-        "elastic block: {} points, {} steps, {} threads: {:.3} s, {:.2} M particle-updates/s",
-        t.points,
-        t.steps,
-        rayon::current_num_threads(),
-        t.seconds,
-        t.updates_per_second() / 1e6
+        "contact adds {:+.1}% to the step",
+        100.0 * (rates[1] / rates[0] - 1.0)
     );
     Ok(())
 }
