@@ -101,3 +101,43 @@ fn block_slides_down_a_slope_at_the_friction_limited_acceleration() {
     assert!((s / s_exact - 1.0).abs() <= 0.02);
     assert!((v / v_exact - 1.0).abs() <= 0.02);
 }
+
+#[test]
+fn bad_blocks_are_refused_and_risky_ones_warned() {
+    use mpdem::rigid::BlockShape;
+    let base = common::load_scene("block_on_ground.ron");
+    // A non-convex polygon: the message says to use a compound.
+    let mut scene = base.clone();
+    scene.blocks[0].shape = BlockShape::Polygon {
+        vertices: vec![
+            DVec2::ZERO,
+            DVec2::new(0.3, 0.0),
+            DVec2::new(0.15, 0.02),
+            DVec2::new(0.15, 0.1),
+        ],
+    };
+    let message = Simulation::from_scene(&scene)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(message.contains("Compound"), "{message}");
+    // Negative friction.
+    let mut scene = base.clone();
+    scene.blocks[0].contact.friction = -0.1;
+    let message = Simulation::from_scene(&scene)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(message.contains("friction must be ≥ 0"), "{message}");
+    // A time step above 2 sqrt(m_p / k_n) and a block sunk into the body.
+    let mut scene = base;
+    scene.blocks[0].contact.normal_stiffness = 1e11;
+    scene.blocks[0].position.y += 0.004;
+    let sim = Simulation::from_scene(&scene).unwrap();
+    let warnings = sim.warnings().join("\n");
+    assert!(warnings.contains("contact stability limit"), "{warnings}");
+    assert!(
+        warnings.contains("overlaps a body at the start by 4"),
+        "{warnings}"
+    );
+}
