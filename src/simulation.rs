@@ -1,6 +1,8 @@
 //! The library entry point: a world and its step schedule.
 
-use crate::components::{BodyIndex, BodyName, MaterialPoints, sort_into_scene_order};
+use crate::components::{
+    BlockId, BodyIndex, BodyName, MaterialPoints, Pose, RigidVelocity, sort_into_scene_order,
+};
 use crate::io::state_hash::StateHasher;
 use crate::math::Real;
 use crate::resources::{Clock, Diagnostics, NumericalFailure};
@@ -159,8 +161,8 @@ impl Simulation {
     }
 
     /// FNV-1a hash of every point's state (position, velocity, deformation
-    /// gradient, volume, stress, strain) of every body in scene order, and of
-    /// the clock. Equal hashes mean bit-identical states.
+    /// gradient, volume, stress, strain) of every body in scene order, of
+    /// every block's pose and velocity in scene order, and of the clock. Equal hashes mean bit-identical states.
     pub fn state_hash(&mut self) -> u64 {
         let mut hasher = StateHasher::default();
         let clock = self.clock();
@@ -169,6 +171,28 @@ impl Simulation {
             if let Some(points) = self.points(entity) {
                 hasher.add_points(points);
             }
+        }
+        let mut blocks: Vec<_> = self
+            .world
+            .query::<(&BlockId, &Pose, &RigidVelocity)>()
+            .iter(&self.world)
+            .map(|(id, pose, v)| {
+                (
+                    id.index,
+                    [
+                        pose.origin.x,
+                        pose.origin.y,
+                        pose.angle,
+                        v.linear.x,
+                        v.linear.y,
+                        v.angular,
+                    ],
+                )
+            })
+            .collect();
+        blocks.sort_unstable_by_key(|b| b.0);
+        for (_, state) in blocks {
+            hasher.add_reals(state);
         }
         hasher.finish()
     }

@@ -141,3 +141,68 @@ fn bad_blocks_are_refused_and_risky_ones_warned() {
         "{warnings}"
     );
 }
+
+/// The samples of the block named `name`.
+fn block_samples(sim: &Simulation, name: &str) -> Vec<mpdem::resources::BlockSample> {
+    let log = sim.world().resource::<BlockLog>();
+    let index = log
+        .names
+        .iter()
+        .position(|n| n == name)
+        .expect("block exists") as u32;
+    log.samples
+        .iter()
+        .filter(|s| s.block == index)
+        .copied()
+        .collect()
+}
+
+#[test]
+fn a_dropped_box_comes_to_rest_without_drift() {
+    let sim = common::run_scene(&common::load_scene("rigid_drop.ron"));
+    let samples = block_samples(&sim, "box");
+    let last = samples.last().expect("samples");
+    // Rest height: ground top 0.2 + half height 0.1 − m g / (2 k_n).
+    let rest = 0.3 - 2500.0 * 0.4 * 0.2 * 9.81 / 2e7;
+    println!(
+        "rigid drop: y = {:.7} m vs {rest:.7} m, x drift {:e} m, angle {:e} rad",
+        last.origin.y,
+        last.origin.x - 1.0,
+        last.angle
+    );
+    // 1e-7 m: far below the 1e-4 m sink, yet above round-off of the springs.
+    assert!((last.origin.y - rest).abs() < 1e-7);
+    assert!((last.origin.x - 1.0).abs() < 1e-12 && last.angle.abs() < 1e-12);
+    // No creep over the last half second.
+    let settled: Vec<_> = samples.iter().filter(|s| s.time > 1.0).collect();
+    let spread = settled
+        .iter()
+        .map(|s| s.origin.y)
+        .fold(Real::NEG_INFINITY, Real::max)
+        - settled
+            .iter()
+            .map(|s| s.origin.y)
+            .fold(Real::INFINITY, Real::min);
+    assert!(spread < 1e-9, "creep of {spread:e} m");
+}
+
+#[test]
+fn a_box_pushed_off_an_edge_tips_over_it() {
+    let sim = common::run_scene(&common::load_scene("rigid_tip.ron"));
+    let samples = block_samples(&sim, "box");
+    let on_table = samples.iter().find(|s| s.time >= 0.15).expect("sample");
+    let last = samples.last().expect("samples");
+    println!(
+        "rigid tip: at 0.15 s angle {:.4} rad, x {:.3}; at {:.2} s angle {:.3} rad, omega {:.3} rad/s",
+        on_table.angle, on_table.origin.x, last.time, last.angle, last.angular
+    );
+    // Still flat while its centre is over the table (edge at x = 1) ...
+    assert!(on_table.origin.x < 1.0 && on_table.angle.abs() < 0.01);
+    // ... then it turns clockwise over the edge, past 45°, and falls.
+    assert!(last.angle < -std::f64::consts::FRAC_PI_4 && last.angular < 0.0);
+    assert!(
+        last.origin.y < 0.5,
+        "box still on the table at y = {}",
+        last.origin.y
+    );
+}

@@ -1,7 +1,7 @@
 //! Settings of the DEM contacts.
 
 use crate::contact::ForceApplication;
-use crate::math::Real;
+use crate::math::{DVec2, Real};
 use bevy_ecs::prelude::Resource;
 use serde::{Deserialize, Serialize};
 
@@ -32,3 +32,9 @@ impl ContactSettings {
         self.margin.unwrap_or(h)
     }
 }
+
+/// Tangential springs of the block–block contacts, carried from step to
+/// step: ((block a, block b, point key), force on a), sorted by key. A pair
+/// point that separates is dropped.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct BlockContactHistory(pub Vec<((u32, u32, u32), DVec2)>);

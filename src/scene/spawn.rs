@@ -122,6 +122,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
     world.insert_resource(clock);
     world.insert_resource(scene.settings);
     world.insert_resource(scene.contact);
+    world.insert_resource(crate::resources::BlockContactHistory::default());
     world.insert_resource(BlockLog {
         names: scene.blocks.iter().map(|b| b.name.clone()).collect(),
         samples: Vec::with_capacity(samples * scene.blocks.len()),

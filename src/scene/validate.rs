@@ -99,11 +99,9 @@ impl Scene {
                 .map_err(|e| invalid(&at, format!("material '{}': {e}", m.name)))?;
         }
 
-        if self.bodies.is_empty() {
-            return Err(invalid(
-                &["bodies"],
-                "the scene has no body: expected at least one in `bodies`".into(),
-            ));
+        if self.bodies.is_empty() && self.blocks.is_empty() {
+            let message = "the scene has nothing to simulate: expected a body in `bodies` or a block in `blocks`";
+            return Err(invalid(&["bodies"], message.into()));
         }
         let (grid_min, grid_max) = (grid.origin, grid.max());
         let margin = self.settings.shape_function.required_margin_cells() * grid.cell_size;
