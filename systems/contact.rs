@@ -5,9 +5,9 @@ use crate::components::{
     BlockContactLaw, BlockContacts, BlockId, MaterialPoints, NeighbourList, PointContact, Pose,
     Reaction, RigidMass, RigidShape, RigidVelocity,
 };
-use crate::contact::{disk_shape_contact, pair_force};
+use crate::contact::{disk_shape_contact, overlap_area, pair_force};
 use crate::math::DVec2;
-use crate::resources::Clock;
+use crate::resources::{Clock, ContactSettings, Penetration};
 use crate::rigid::velocity_at;
 use bevy_ecs::prelude::*;
 
@@ -26,18 +26,20 @@ type BlockData = (
 
 /// For every block (in scene order) and every listed point (in list order):
 /// the point's disk against the block's shape (parry's contact query gives
-/// the depth δ and the normal from block to point), then eq. 18 with the
+/// the depth and the normal from block to point; δ is that depth or the
+/// disk's overlap area, per `ContactSettings::penetration`), then eq. 18 with the
 /// relative velocity V_p − (v + ω × r) at the contact point and the pair's
 /// tangential spring from the previous step (dropped on separation). The
 /// force goes to the point's `contact_force`, the opposite force and its
 /// torque about the centre of mass to the block's `Reaction`, both summed in
 /// that fixed order.
 ///
-/// Reads: `Clock`, blocks (shape, pose, velocity, mass, law, neighbour list),
+/// Reads: `Clock`, `ContactSettings`, blocks (shape, pose, velocity, mass, law, neighbour list),
 /// `MaterialPoints` (position, velocity, contact radius).
 /// Writes: `MaterialPoints::contact_force`, `BlockContacts`, `Reaction`.
 pub fn compute_rigid_contacts(
     clock: Res<Clock>,
+    settings: Res<ContactSettings>,
     mut order: Local<Vec<(u32, Entity)>>,
     mut bodies: Query<&mut MaterialPoints>,
     mut blocks: Query<(Entity, BlockData)>,
@@ -81,14 +83,11 @@ pub fn compute_rigid_contacts(
                 .previous
                 .binary_search_by(|c| (c.body, c.point).cmp(&(body, p)))
                 .map_or(DVec2::ZERO, |k| contacts.previous[k].tangential);
-            let f = pair_force(
-                &law.0,
-                geometry.depth,
-                geometry.normal,
-                relative,
-                previous,
-                clock.dt,
-            );
+            let delta = match settings.penetration {
+                Penetration::Depth => geometry.depth,
+                Penetration::Area => overlap_area(points.contact_radius[i], geometry.depth),
+            };
+            let f = pair_force(&law.0, delta, geometry.normal, relative, previous, clock.dt);
             points.contact_force[i] += f.force;
             reaction.force -= f.force;
             reaction.torque -= (geometry.point - center).perp_dot(f.force);

@@ -206,3 +206,25 @@ fn a_box_pushed_off_an_edge_tips_over_it() {
         last.origin.y
     );
 }
+
+#[test]
+fn overlap_area_penetration_also_carries_the_weight() {
+    // δ as the disks' overlap area, with an area stiffness giving a similar
+    // sink: k_n = 1e7 N/m ÷ ~1e-3 m of chord ≈ 1e10 N/m².
+    let mut scene = common::load_scene("block_on_ground.ron");
+    scene.contact.penetration = mpdem::resources::Penetration::Area;
+    scene.blocks[0].contact.normal_stiffness = 1e10;
+    let sim = common::run_scene(&scene);
+    let last = *sim
+        .world()
+        .resource::<BlockLog>()
+        .samples
+        .last()
+        .expect("samples");
+    let weight = 3000.0 * 0.1 * 0.4 * 9.81;
+    println!(
+        "block on ground, area penetration: reaction {:.3} N/m vs {weight:.3}",
+        -last.force.y
+    );
+    assert!((-last.force.y / weight - 1.0).abs() <= 0.02);
+}

@@ -37,10 +37,32 @@ pub fn disk_shape_contact(
     })
 }
 
+/// Area of the part of a disk of radius `radius` beyond a straight boundary
+/// at depth `depth` (a circular segment): the 2D "overlap area" measure of
+/// penetration (section 3.2.2), exact for a flat face and a close
+/// approximation while the disk is small against the block's features.
+pub fn overlap_area(radius: Real, depth: Real) -> Real {
+    let d = depth.clamp(0.0, 2.0 * radius);
+    let h = radius - d;
+    radius * radius * (h / radius).acos() - h * (2.0 * radius * d - d * d).sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use parry2d_f64::shape::Cuboid;
+
+    #[test]
+    fn overlap_area_of_half_and_whole_disks() {
+        let r: Real = 0.1;
+        assert!((overlap_area(r, r) - std::f64::consts::PI * r * r / 2.0).abs() < 1e-15);
+        assert!((overlap_area(r, 2.0 * r) - std::f64::consts::PI * r * r).abs() < 1e-15);
+        assert_eq!(overlap_area(r, 0.0), 0.0);
+        // Shallow: the segment's area is (4/3) sqrt(2 r) δ^(3/2) to leading order.
+        let d: Real = 1e-6;
+        let shallow = 4.0 / 3.0 * (2.0 * r).sqrt() * d.powf(1.5);
+        assert!((overlap_area(r, d) / shallow - 1.0).abs() < 1e-4);
+    }
 
     #[test]
     fn disk_resting_into_a_box() {

@@ -19,6 +19,20 @@ pub struct ContactSettings {
     pub margin: Option<Real>,
     /// Body force (default) or traction (section 3.2.3).
     pub force_application: ForceApplication,
+    /// What δ of eq. 18a measures for a point against a block.
+    pub penetration: Penetration,
+}
+
+/// The penetration measure δ of rigid–nonrigid contacts (section 3.2.2).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Penetration {
+    /// Depth of the disk in the block (m); k_n in N/m per metre of
+    /// thickness. Default: the classic DEM measure.
+    #[default]
+    Depth,
+    /// Area of the disk beyond the block's face (m²); k_n in N/m² per
+    /// metre, so the force grows as δ^(3/2) like a Hertzian contact.
+    Area,
 }
 
 impl ContactSettings {

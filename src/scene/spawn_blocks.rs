@@ -9,6 +9,7 @@ use crate::components::{
 };
 use crate::contact::disk_shape_contact;
 use crate::math::Real;
+use crate::resources::Penetration;
 use bevy_ecs::prelude::*;
 
 /// Overlap between a block and a body's disks at the start above which a
@@ -56,7 +57,14 @@ pub fn spawn_blocks(
             };
             warnings.extend(overlap_warning(&spec.name, points, &shape, &pose));
             let lightest = points.mass.iter().copied().fold(Real::INFINITY, Real::min);
-            let limit = 2.0 * (lightest / spec.contact.normal_stiffness).sqrt();
+            // In `Area` mode the stiffness is per area; the largest slope of the
+            // overlap area, d A / d δ = 2 r at δ = r, makes it a spring.
+            let widest = points.contact_radius.iter().copied().fold(0.0, Real::max);
+            let stiffness = match scene.contact.penetration {
+                Penetration::Depth => spec.contact.normal_stiffness,
+                Penetration::Area => spec.contact.normal_stiffness * 2.0 * widest,
+            };
+            let limit = 2.0 * (lightest / stiffness).sqrt();
             if scene.time.dt > limit {
                 warnings.push(format!(
                     "time.dt = {:e} s exceeds the contact stability limit 2 sqrt(m_p / k_n) = {limit:e} s of block '{}' (lightest point {lightest:e} kg/m)",
