@@ -10,6 +10,11 @@ use crate::math::DVec2;
 use crate::resources::{Clock, ContactSettings, Penetration};
 use crate::rigid::velocity_at;
 use bevy_ecs::prelude::*;
+use rayon::prelude::*;
+
+/// Fewest listed points one parallel task tests: a disk–shape query costs
+/// about a microsecond, so smaller tasks cost more to hand out than they save.
+const MIN_CONTACTS_PER_TASK: usize = 256;
 
 /// The blocks' data the contact system reads and writes.
 type BlockData = (
@@ -41,6 +46,7 @@ pub fn compute_rigid_contacts(
     clock: Res<Clock>,
     settings: Res<ContactSettings>,
     mut order: Local<Vec<(u32, Entity)>>,
+    mut found: Local<Vec<Option<PointContact>>>,
     mut bodies: Query<&mut MaterialPoints>,
     mut blocks: Query<(Entity, BlockData)>,
 ) {
@@ -62,42 +68,48 @@ pub fn compute_rigid_contacts(
         let contacts = &mut *contacts;
         std::mem::swap(&mut contacts.previous, &mut contacts.current);
         contacts.current.clear();
-        *reaction = Reaction::default();
+        // Narrow phase in parallel, one result per listed point, in list order.
         let parry_pose = pose.to_parry();
+        let previous = &contacts.previous;
+        let readable = &bodies;
+        list.points
+            .par_iter()
+            .with_min_len(MIN_CONTACTS_PER_TASK)
+            .map(|&(body, p)| {
+                let points = readable.get(body).ok()?;
+                let i = p as usize;
+                let radius = points.contact_radius[i];
+                let geometry =
+                    disk_shape_contact(points.position[i], radius, &*shape.0, &parry_pose)?;
+                let relative =
+                    points.velocity[i] - velocity_at(pose, velocity, mass, geometry.point);
+                let carried = previous
+                    .binary_search_by(|c| (c.body, c.point).cmp(&(body, p)))
+                    .map_or(DVec2::ZERO, |k| previous[k].tangential);
+                let delta = match settings.penetration {
+                    Penetration::Depth => geometry.depth,
+                    Penetration::Area => overlap_area(radius, geometry.depth),
+                };
+                let f = pair_force(&law.0, delta, geometry.normal, relative, carried, clock.dt);
+                Some(PointContact {
+                    body,
+                    point: p,
+                    force: f.force,
+                    tangential: f.tangential,
+                    at: geometry.point,
+                })
+            })
+            .collect_into_vec(&mut found);
+        // Forces and reactions summed sequentially, in list order.
+        *reaction = Reaction::default();
         let center = mass.center(pose);
-        for &(body, p) in &list.points {
-            let Ok(mut points) = bodies.get_mut(body) else {
-                continue;
-            };
-            let i = p as usize;
-            let Some(geometry) = disk_shape_contact(
-                points.position[i],
-                points.contact_radius[i],
-                &*shape.0,
-                &parry_pose,
-            ) else {
-                continue;
-            };
-            let relative = points.velocity[i] - velocity_at(pose, velocity, mass, geometry.point);
-            let previous = contacts
-                .previous
-                .binary_search_by(|c| (c.body, c.point).cmp(&(body, p)))
-                .map_or(DVec2::ZERO, |k| contacts.previous[k].tangential);
-            let delta = match settings.penetration {
-                Penetration::Depth => geometry.depth,
-                Penetration::Area => overlap_area(points.contact_radius[i], geometry.depth),
-            };
-            let f = pair_force(&law.0, delta, geometry.normal, relative, previous, clock.dt);
-            points.contact_force[i] += f.force;
-            reaction.force -= f.force;
-            reaction.torque -= (geometry.point - center).perp_dot(f.force);
-            contacts.current.push(PointContact {
-                body,
-                point: p,
-                force: f.force,
-                tangential: f.tangential,
-                at: geometry.point,
-            });
+        for contact in found.iter().flatten() {
+            if let Ok(mut points) = bodies.get_mut(contact.body) {
+                points.contact_force[contact.point as usize] += contact.force;
+            }
+            reaction.force -= contact.force;
+            reaction.torque -= (contact.at - center).perp_dot(contact.force);
+            contacts.current.push(*contact);
         }
         contacts.current.sort_unstable_by_key(|c| (c.body, c.point));
     }
