@@ -103,6 +103,37 @@ pub fn outer(a: DVec2, b: DVec2) -> DMat2 {
     DMat2::from_cols(a * b.x, a * b.y)
 }
 
+/// Accepts a polygon with three or more finite vertices whose turns all go
+/// the same way (either winding; collinear vertices allowed); the message
+/// says what is wrong and where.
+pub fn check_convex_polygon(vertices: &[DVec2]) -> Result<(), String> {
+    if vertices.len() < 3 || vertices.iter().any(|v| !v.is_finite()) {
+        return Err(format!(
+            "polygon needs at least 3 finite vertices, got {}",
+            vertices.len()
+        ));
+    }
+    let n = vertices.len();
+    let mut sign = 0.0;
+    for k in 0..n {
+        let (a, b, c) = (vertices[k], vertices[(k + 1) % n], vertices[(k + 2) % n]);
+        let turn = (b - a).perp_dot(c - b);
+        if turn != 0.0 {
+            if sign != 0.0 && turn.signum() != sign {
+                return Err(format!(
+                    "polygon is not convex at vertex {} ({b})",
+                    (k + 1) % n
+                ));
+            }
+            sign = turn.signum();
+        }
+    }
+    if sign == 0.0 {
+        return Err("polygon has no area (all vertices on a line)".into());
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,6 +1,6 @@
 //! Block shapes as the scene writes them, turned into parry shapes.
 
-use crate::math::{DVec2, Real};
+use crate::math::{DVec2, Real, check_convex_polygon};
 use parry2d_f64::math::Pose;
 use parry2d_f64::shape::SharedShape;
 use serde::{Deserialize, Serialize};
@@ -144,31 +144,16 @@ impl BlockShape {
     }
 }
 
-/// Three or more finite vertices turning the same way; the message says to
-/// use a compound for a non-convex block.
+/// A convex polygon as [`check_convex_polygon`] wants it; a non-convex one
+/// is refused with the advice to build the block from convex parts.
 fn check_convex(vertices: &[DVec2]) -> Result<(), String> {
-    if vertices.len() < 3 || vertices.iter().any(|v| !v.is_finite()) {
-        return Err(format!(
-            "polygon needs at least 3 finite vertices, got {}",
-            vertices.len()
-        ));
-    }
-    let n = vertices.len();
-    let mut sign = 0.0;
-    for k in 0..n {
-        let (a, b, c) = (vertices[k], vertices[(k + 1) % n], vertices[(k + 2) % n]);
-        let turn = (b - a).perp_dot(c - b);
-        if turn != 0.0 {
-            if sign != 0.0 && turn.signum() != sign {
-                return Err(format!(
-                    "polygon is not convex at vertex {} ({b}): split it into convex parts with a Compound",
-                    (k + 1) % n
-                ));
-            }
-            sign = turn.signum();
+    check_convex_polygon(vertices).map_err(|e| {
+        if e.contains("not convex") {
+            format!("{e}: split it into convex parts with a Compound")
+        } else {
+            e
         }
-    }
-    Ok(())
+    })
 }
 
 #[cfg(test)]

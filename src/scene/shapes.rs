@@ -1,6 +1,6 @@
 //! Body outlines and the filling of an outline with material points.
 
-use crate::math::{DVec2, Real};
+use crate::math::{DVec2, Real, check_convex_polygon};
 use serde::{Deserialize, Serialize};
 
 /// The outline of a body. Points are placed at the sub-cell centres of the
@@ -55,7 +55,7 @@ impl Shape {
                     ));
                 }
             }
-            Self::Polygon { vertices } => check_convex(vertices)?,
+            Self::Polygon { vertices } => check_convex_polygon(vertices)?,
             Self::Disk { radius, .. } => {
                 if !(radius.is_finite() && *radius > 0.0) {
                     return Err(format!("disk radius must be > 0, got {radius}"));
@@ -150,36 +150,6 @@ impl Shape {
         }
         points
     }
-}
-
-/// A polygon is accepted when it has three or more vertices and every turn
-/// goes the same way (collinear vertices allowed).
-fn check_convex(vertices: &[DVec2]) -> Result<(), String> {
-    if vertices.len() < 3 {
-        return Err(format!(
-            "polygon needs at least 3 vertices, got {}",
-            vertices.len()
-        ));
-    }
-    let n = vertices.len();
-    let mut sign = 0.0;
-    for k in 0..n {
-        let (a, b, c) = (vertices[k], vertices[(k + 1) % n], vertices[(k + 2) % n]);
-        let turn = (b - a).perp_dot(c - b);
-        if turn != 0.0 {
-            if sign != 0.0 && turn.signum() != sign {
-                return Err(format!(
-                    "polygon is not convex at vertex {} ({b})",
-                    (k + 1) % n
-                ));
-            }
-            sign = turn.signum();
-        }
-    }
-    if sign == 0.0 {
-        return Err("polygon has no area (all vertices on a line)".into());
-    }
-    Ok(())
 }
 
 #[cfg(test)]
