@@ -26,6 +26,8 @@ pub fn transfer_contact_forces(
     let ForceApplication::Traction { points: count } = settings.force_application else {
         return;
     };
+    // Scenes are validated to at least 1; a system changing the setting at
+    // run time must not make the split divide by zero.
     let count = count.max(1);
     order.clear();
     order.extend(blocks.iter().map(|(e, id, _)| (id.index, e)));
@@ -45,6 +47,7 @@ pub fn transfer_contact_forces(
             let p = contact.point as usize;
             let direction = contact.force / magnitude;
             let share = contact.force / count as Real;
+            // uGIMP domains are square: the x half-size is the half-size.
             for at in traction_points(points.position[p], points.half_size[p].x, direction, count) {
                 add_with_hat_functions(&grid, &mut layer, at, share);
             }

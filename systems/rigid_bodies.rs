@@ -5,7 +5,7 @@ use crate::components::{
 };
 use crate::contact::{ContactLaw, ShapeContact, pair_force, shape_shape_contacts};
 use crate::math::{DVec2, Real};
-use crate::resources::{BlockContactHistory, Clock, Gravity};
+use crate::resources::{BlockContactHistory, BlockContactKey, Clock, Gravity};
 use crate::rigid::{advance, integrate_dynamic, velocity_at};
 use bevy_ecs::prelude::*;
 
@@ -43,7 +43,7 @@ pub struct RigidScratch {
     blocks: Vec<BlockState>,
     contacts: Vec<ShapeContact>,
     forces: Vec<(DVec2, Real)>,
-    history: Vec<((u32, u32, u32), DVec2)>,
+    history: Vec<(BlockContactKey, DVec2)>,
 }
 
 /// The law of a contact between two blocks: the softer stiffnesses, the
@@ -61,9 +61,10 @@ fn pair_law(a: &ContactLaw, b: &ContactLaw) -> ContactLaw {
 /// gravity and the contacts with other blocks (parry manifolds, eq. 18 at
 /// each manifold point with its tangential spring kept while in contact);
 /// kinematic blocks move with their prescribed velocity; fixed blocks stay.
-/// When two blocks touch, the step is cut into sub-steps of at most a tenth
-/// of the pair's period 2π √(m/k_n) (m the lighter dynamic block), capped at
-/// [`MAX_SUBSTEPS`]; the points' reaction is held over the step. Pairs are
+/// When a dynamic block shares the scene with another block, the step is cut
+/// into sub-steps of at most a tenth of the pair's contact period 2π √(m/k_n)
+/// (m the lighter dynamic block of the pair), capped at [`MAX_SUBSTEPS`];
+/// the points' reaction is held over the step. Pairs are
 /// visited in scene order.
 ///
 /// Reads: `Clock`, `Gravity`, `Reaction`, `RigidMass`, `RigidMotion`,
@@ -151,7 +152,7 @@ fn block_forces(
     scratch: &mut RigidScratch,
     gravity: DVec2,
     dt: Real,
-    history: &mut Vec<((u32, u32, u32), DVec2)>,
+    history: &mut Vec<(BlockContactKey, DVec2)>,
 ) {
     let RigidScratch {
         blocks,
@@ -186,7 +187,7 @@ fn block_forces(
             let law = pair_law(&a.law, &b.law);
             let (center_a, center_b) = (a.mass.center(&a.pose), b.mass.center(&b.pose));
             for c in contacts.iter() {
-                let key = (a.index, b.index, c.key);
+                let key = (a.index, b.index, c.features);
                 let previous = history
                     .binary_search_by_key(&key, |h| h.0)
                     .map_or(DVec2::ZERO, |k| history[k].1);

@@ -15,22 +15,26 @@ pub struct ShapeContact {
     pub normal: DVec2,
     /// Contact point, midway between the two surfaces (m).
     pub point: DVec2,
-    /// Stable index of the point within the pair (part pair and manifold
-    /// point), to carry its tangential spring from step to step.
-    pub key: u32,
+    /// What identifies the point from step to step, to carry its tangential
+    /// spring: the pair of convex parts and the touching features (vertex or
+    /// face) of each, as parry tracks them.
+    pub features: (u32, u32, u32),
 }
 
 /// The convex parts of a shape placed at `pose`: the parts of a compound, or
-/// the shape itself.
-fn convex_parts<'a>(shape: &'a SharedShape, pose: &Pose) -> Vec<(Pose, &'a dyn Shape)> {
-    match shape.as_compound() {
-        Some(compound) => compound
-            .shapes()
-            .iter()
-            .map(|(part_pose, part)| (*pose * *part_pose, &**part))
-            .collect(),
-        None => vec![(*pose, &**shape)],
-    }
+/// the shape itself (no allocation).
+fn convex_parts<'a>(
+    shape: &'a SharedShape,
+    pose: &Pose,
+) -> impl Iterator<Item = (Pose, &'a dyn Shape)> + Clone {
+    let compound = shape.as_compound();
+    let pose = *pose;
+    let parts = compound.map_or(&[][..], |c| c.shapes());
+    let whole = compound.is_none().then_some((pose, &**shape));
+    parts
+        .iter()
+        .map(move |(part_pose, part)| (pose * *part_pose, &**part))
+        .chain(whole)
 }
 
 /// Appends to `out` every overlapping point between `a` at `pose_a` and `b`
@@ -42,15 +46,15 @@ pub fn shape_shape_contacts(
     pose_b: &Pose,
     out: &mut Vec<ShapeContact>,
 ) {
-    let parts_b = convex_parts(b, pose_b);
-    for (i, (part_a_pose, part_a)) in convex_parts(a, pose_a).into_iter().enumerate() {
-        for (j, (part_b_pose, part_b)) in parts_b.iter().enumerate() {
-            let pos12 = part_a_pose.inv_mul(part_b_pose);
+    let count_b = convex_parts(b, pose_b).count();
+    for (i, (part_a_pose, part_a)) in convex_parts(a, pose_a).enumerate() {
+        for (j, (part_b_pose, part_b)) in convex_parts(b, pose_b).enumerate() {
+            let pos12 = part_a_pose.inv_mul(&part_b_pose);
             let mut manifold = ContactManifold::<(), ()>::new();
             let found = DefaultQueryDispatcher.contact_manifold_convex_convex(
                 &pos12,
                 part_a,
-                *part_b,
+                part_b,
                 None,
                 None,
                 0.0,
@@ -60,18 +64,18 @@ pub fn shape_shape_contacts(
                 continue;
             }
             let normal = -part_a_pose.transform_vector(manifold.local_n1);
-            for (k, point) in manifold.points.iter().enumerate() {
+            for point in &manifold.points {
                 if point.dist >= 0.0 {
                     continue;
                 }
                 let p1 = part_a_pose.transform_point(point.local_p1);
                 let p2 = part_b_pose.transform_point(point.local_p2);
-                let key = ((i * parts_b.len() + j) * 4 + k) as u32;
+                let features = ((i * count_b + j) as u32, point.fid1.0, point.fid2.0);
                 out.push(ShapeContact {
                     depth: -point.dist,
                     normal,
                     point: 0.5 * (p1 + p2),
-                    key,
+                    features,
                 });
             }
         }

@@ -38,7 +38,7 @@ pub enum Penetration {
 impl ContactSettings {
     /// The rebuild period in steps.
     pub fn period(&self) -> u32 {
-        self.iter_period.unwrap_or(10).max(1)
+        self.iter_period.unwrap_or(10)
     }
 
     /// The list margin for a grid of cell size `h`.
@@ -47,8 +47,12 @@ impl ContactSettings {
     }
 }
 
+/// Identifies a block–block contact point from step to step: block a, block
+/// b (scene indices, a < b) and the point's features (see
+/// `ShapeContact::features`).
+pub type BlockContactKey = (u32, u32, (u32, u32, u32));
+
 /// Tangential springs of the block–block contacts, carried from step to
-/// step: ((block a, block b, point key), force on a), sorted by key. A pair
-/// point that separates is dropped.
+/// step: (key, force on a), sorted by key. A point that separates is dropped.
 #[derive(Resource, Clone, Debug, Default, PartialEq)]
-pub struct BlockContactHistory(pub Vec<((u32, u32, u32), DVec2)>);
+pub struct BlockContactHistory(pub Vec<(BlockContactKey, DVec2)>);

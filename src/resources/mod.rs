@@ -9,7 +9,7 @@ mod records;
 mod settings;
 
 pub use clock::Clock;
-pub use contact_settings::{BlockContactHistory, ContactSettings, Penetration};
+pub use contact_settings::{BlockContactHistory, BlockContactKey, ContactSettings, Penetration};
 pub use diagnostics::{Diagnostics, NumericalFailure};
 pub use grid::{EdgeCondition, EdgeConditions, Grid};
 pub use records::{BlockLog, BlockSample, EnergyLog, EnergySample, Probe, ProbeSample, Probes};

@@ -1,6 +1,7 @@
 //! Block shapes as the scene writes them, turned into parry shapes.
 
 use crate::math::{DVec2, Real, check_convex_polygon};
+use parry2d_f64::mass_properties::MassProperties;
 use parry2d_f64::math::Pose;
 use parry2d_f64::shape::SharedShape;
 use serde::{Deserialize, Serialize};
@@ -54,7 +55,7 @@ impl BlockShape {
             }
             Self::Polygon { vertices } => {
                 check_convex(vertices)?;
-                SharedShape::convex_polyline(vertices.clone())
+                SharedShape::convex_polyline(counter_clockwise(vertices))
                     .ok_or_else(|| "polygon has no area".to_string())
             }
             Self::Ball { radius } => {
@@ -72,7 +73,7 @@ impl BlockShape {
                 if !(border_radius.is_finite() && *border_radius > 0.0) {
                     return Err(format!("border_radius must be > 0, got {border_radius}"));
                 }
-                SharedShape::round_convex_polyline(vertices.clone(), *border_radius)
+                SharedShape::round_convex_polyline(counter_clockwise(vertices), *border_radius)
                     .ok_or_else(|| "polygon has no area".to_string())
             }
             Self::Compound { parts } => {
@@ -94,6 +95,33 @@ impl BlockShape {
 }
 
 impl BlockShape {
+    /// Mass properties at `density` of the shape `built` from this
+    /// description. Parry leaves the border of a rounded polygon out of its
+    /// mass, so rounded polygons (alone or as compound parts) are measured
+    /// on their rounded outline instead.
+    pub fn mass_properties(&self, built: &SharedShape, density: Real) -> MassProperties {
+        match self {
+            Self::RoundPolygon {
+                vertices,
+                border_radius,
+            } => MassProperties::from_convex_polygon(
+                density,
+                &rounded_outline(&counter_clockwise(vertices), *border_radius),
+            ),
+            Self::Compound { parts } => match built.as_compound() {
+                Some(compound) => parts
+                    .iter()
+                    .zip(compound.shapes())
+                    .map(|((part, _, _), (pose, shape))| {
+                        part.mass_properties(shape, density).transform_by(pose)
+                    })
+                    .sum(),
+                None => built.mass_properties(density),
+            },
+            _ => built.mass_properties(density),
+        }
+    }
+
     /// Closed outlines of the shape in its frame, for pictures (VTK, PNG):
     /// one per convex part; disks and rounded corners as 32-gons.
     pub fn outline(&self) -> Vec<Vec<DVec2>> {
@@ -123,14 +151,10 @@ impl BlockShape {
             Self::RoundPolygon {
                 vertices,
                 border_radius,
-            } => {
-                // The rounded outline lies within the union of disks on the
-                // vertices and the offset edges; drawing each vertex's disk
-                // next to the polygon is enough for a picture.
-                let mut parts = vec![vertices.clone()];
-                parts.extend(vertices.iter().map(|v| circle(*v, *border_radius)));
-                parts
-            }
+            } => vec![rounded_outline(
+                &counter_clockwise(vertices),
+                *border_radius,
+            )],
             Self::Compound { parts } => parts
                 .iter()
                 .flat_map(|(shape, offset, angle)| {
@@ -142,6 +166,38 @@ impl BlockShape {
                 .collect(),
         }
     }
+}
+
+/// The vertices in counter-clockwise order, as parry's convex polygons need
+/// them (it takes each face's outward normal to the right of its edge).
+fn counter_clockwise(vertices: &[DVec2]) -> Vec<DVec2> {
+    let twice_area: Real = (0..vertices.len())
+        .map(|k| vertices[k].perp_dot(vertices[(k + 1) % vertices.len()]))
+        .sum();
+    let mut ordered = vertices.to_vec();
+    if twice_area < 0.0 {
+        ordered.reverse();
+    }
+    ordered
+}
+
+/// The outline of a convex polygon (counter-clockwise) grown by `radius`:
+/// each edge pushed out along its normal, joined by arcs around the
+/// vertices (8 segments per arc).
+fn rounded_outline(vertices: &[DVec2], radius: Real) -> Vec<DVec2> {
+    const ARC_SEGMENTS: usize = 8;
+    let n = vertices.len();
+    let normal = |k: usize| (vertices[(k + 1) % n] - vertices[k]).normalize().perp() * -1.0;
+    let mut outline = Vec::with_capacity(n * (ARC_SEGMENTS + 1));
+    for (k, vertex) in vertices.iter().enumerate() {
+        let (from, to) = (normal((k + n - 1) % n), normal(k));
+        let sweep = from.angle_to(to).rem_euclid(std::f64::consts::TAU);
+        for s in 0..=ARC_SEGMENTS {
+            let turn = DVec2::from_angle(sweep * s as Real / ARC_SEGMENTS as Real);
+            outline.push(*vertex + radius * turn.rotate(from));
+        }
+    }
+    outline
 }
 
 /// A convex polygon as [`check_convex_polygon`] wants it; a non-convex one
@@ -206,5 +262,32 @@ mod tests {
         let shape = pile.build().unwrap();
         let props = shape.mass_properties(1.0);
         assert!((props.mass() - (0.8 * 6.0 + 0.5 * 0.8 * 0.7)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn clockwise_polygons_and_rounded_masses() {
+        // A clockwise square gives the same solid as the counter-clockwise one.
+        let ccw = vec![DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y];
+        let cw: Vec<DVec2> = ccw.iter().rev().copied().collect();
+        let a = BlockShape::Polygon {
+            vertices: ccw.clone(),
+        }
+        .build()
+        .unwrap();
+        let b = BlockShape::Polygon { vertices: cw }.build().unwrap();
+        let inside = parry2d_f64::math::Pose::IDENTITY;
+        for shape in [&a, &b] {
+            assert!(shape.contains_point(&inside, DVec2::splat(0.5)));
+            assert!(!shape.contains_point(&inside, DVec2::splat(1.5)));
+        }
+        // Rounded unit square, r = 0.1: area 1 + 4 r + π r² (polygonal arcs
+        // of 8 segments lose (1 − sin(π/8)/(π/8)) of the corner area).
+        let round = BlockShape::RoundPolygon {
+            vertices: ccw,
+            border_radius: 0.1,
+        };
+        let mass = round.mass_properties(&round.build().unwrap(), 1.0).mass();
+        let exact = 1.0 + 0.4 + std::f64::consts::PI * 0.01;
+        assert!((mass / exact - 1.0).abs() < 2e-3, "{mass} vs {exact}");
     }
 }

@@ -45,7 +45,7 @@ pub fn spawn_blocks(
                 (RigidMotion::Dynamic, *density, *velocity)
             }
         };
-        let props = shape.mass_properties(density);
+        let props = spec.shape.mass_properties(&shape, density);
         let mass = RigidMass {
             mass: props.mass(),
             inertia: props.principal_inertia(),
@@ -60,14 +60,18 @@ pub fn spawn_blocks(
             // In `Area` mode the stiffness is per area; the largest slope of the
             // overlap area, d A / d δ = 2 r at δ = r, makes it a spring.
             let widest = points.contact_radius.iter().copied().fold(0.0, Real::max);
+            let spring = spec
+                .contact
+                .normal_stiffness
+                .max(spec.contact.tangential_stiffness);
             let stiffness = match scene.contact.penetration {
-                Penetration::Depth => spec.contact.normal_stiffness,
-                Penetration::Area => spec.contact.normal_stiffness * 2.0 * widest,
+                Penetration::Depth => spring,
+                Penetration::Area => spring * 2.0 * widest,
             };
             let limit = 2.0 * (lightest / stiffness).sqrt();
             if scene.time.dt > limit {
                 warnings.push(format!(
-                    "time.dt = {:e} s exceeds the contact stability limit 2 sqrt(m_p / k_n) = {limit:e} s of block '{}' (lightest point {lightest:e} kg/m)",
+                    "time.dt = {:e} s exceeds the contact stability limit 2 sqrt(m_p / max(k_n, k_t)) = {limit:e} s of block '{}' (lightest point {lightest:e} kg/m)",
                     scene.time.dt, spec.name
                 ));
             }

@@ -4,6 +4,8 @@ use super::{
     InitialStress, InitialVelocity, MotionSpec, Scene, SceneError, SourceLocation, VelocityField,
     rules,
 };
+use crate::components::RigidVelocity;
+use crate::contact::ForceApplication;
 use std::collections::BTreeSet;
 use std::path::Path;
 
@@ -226,11 +228,31 @@ impl Scene {
                 .contact
                 .check()
                 .map_err(|e| fail("contact", format!("block '{}': {e}", block.name)))?;
+            let initial = match &block.motion {
+                MotionSpec::Fixed => RigidVelocity::default(),
+                MotionSpec::Kinematic(v) | MotionSpec::Dynamic { velocity: v, .. } => *v,
+            };
+            if !(initial.linear.is_finite() && initial.angular.is_finite()) {
+                return Err(fail(
+                    "motion",
+                    format!("block '{}': velocity must be finite", block.name),
+                ));
+            }
             if let MotionSpec::Dynamic { density, .. } = block.motion {
                 rules::positive(density).map_err(|e| {
                     fail("density", format!("block '{}': density: {e}", block.name))
                 })?;
             }
+        }
+        if self.contact.iter_period == Some(0) {
+            return Err(invalid(
+                &["contact", "iter_period"],
+                "contact.iter_period must be at least 1".into(),
+            ));
+        }
+        if let ForceApplication::Traction { points: 0 } = self.contact.force_application {
+            let message = "contact.force_application: Traction needs at least 1 point".into();
+            return Err(invalid(&["contact", "force_application"], message));
         }
         if let Some(margin) = self.contact.margin {
             rules::positive(margin)
