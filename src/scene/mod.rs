@@ -180,6 +180,19 @@ pub enum MotionSpec {
         #[serde(default)]
         velocity: RigidVelocity,
     },
+    /// Moves under reactions and gravity, with mass properties given.
+    DynamicWithMass {
+        /// Mass (kg per metre of thickness), > 0.
+        mass: Real,
+        /// Moment of inertia about the centre of mass (kg m² per metre), > 0.
+        inertia: Real,
+        /// Centre of mass in the block's frame (m). Default: the frame origin.
+        #[serde(default)]
+        center: DVec2,
+        /// Initial velocity. Default: at rest.
+        #[serde(default)]
+        velocity: RigidVelocity,
+    },
 }
 
 fn default_points_per_cell() -> u32 {

@@ -38,18 +38,36 @@ pub fn spawn_blocks(
             origin: spec.position,
             angle: spec.angle.to_radians(),
         };
-        let (motion, density, velocity) = match &spec.motion {
-            MotionSpec::Fixed => (RigidMotion::Fixed, 1.0, RigidVelocity::default()),
-            MotionSpec::Kinematic(v) => (RigidMotion::Kinematic, 1.0, *v),
-            MotionSpec::Dynamic { density, velocity } => {
-                (RigidMotion::Dynamic, *density, *velocity)
+        let mass_of = |density: Real| {
+            let props = spec.shape.mass_properties(&shape, density);
+            RigidMass {
+                mass: props.mass(),
+                inertia: props.principal_inertia(),
+                local_center: props.local_com,
             }
         };
-        let props = spec.shape.mass_properties(&shape, density);
-        let mass = RigidMass {
-            mass: props.mass(),
-            inertia: props.principal_inertia(),
-            local_center: props.local_com,
+        // Fixed and kinematic blocks need only their centre of mass (the
+        // point a kinematic spin turns about): any density will do.
+        let (motion, mass, velocity) = match &spec.motion {
+            MotionSpec::Fixed => (RigidMotion::Fixed, mass_of(1.0), RigidVelocity::default()),
+            MotionSpec::Kinematic(v) => (RigidMotion::Kinematic, mass_of(1.0), *v),
+            MotionSpec::Dynamic { density, velocity } => {
+                (RigidMotion::Dynamic, mass_of(*density), *velocity)
+            }
+            MotionSpec::DynamicWithMass {
+                mass,
+                inertia,
+                center,
+                velocity,
+            } => (
+                RigidMotion::Dynamic,
+                RigidMass {
+                    mass: *mass,
+                    inertia: *inertia,
+                    local_center: *center,
+                },
+                *velocity,
+            ),
         };
         for &body in bodies {
             let Some(points) = world.get::<MaterialPoints>(body) else {

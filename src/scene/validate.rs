@@ -230,13 +230,34 @@ impl Scene {
                 .map_err(|e| fail("contact", format!("block '{}': {e}", block.name)))?;
             let initial = match &block.motion {
                 MotionSpec::Fixed => RigidVelocity::default(),
-                MotionSpec::Kinematic(v) | MotionSpec::Dynamic { velocity: v, .. } => *v,
+                MotionSpec::Kinematic(v)
+                | MotionSpec::Dynamic { velocity: v, .. }
+                | MotionSpec::DynamicWithMass { velocity: v, .. } => *v,
             };
             if !(initial.linear.is_finite() && initial.angular.is_finite()) {
                 return Err(fail(
                     "motion",
                     format!("block '{}': velocity must be finite", block.name),
                 ));
+            }
+            if let MotionSpec::DynamicWithMass {
+                mass,
+                inertia,
+                center,
+                ..
+            } = block.motion
+            {
+                rules::positive(mass)
+                    .map_err(|e| fail("mass", format!("block '{}': mass: {e}", block.name)))?;
+                rules::positive(inertia).map_err(|e| {
+                    fail("inertia", format!("block '{}': inertia: {e}", block.name))
+                })?;
+                if !center.is_finite() {
+                    return Err(fail(
+                        "center",
+                        format!("block '{}': center must be finite", block.name),
+                    ));
+                }
             }
             if let MotionSpec::Dynamic { density, .. } = block.motion {
                 rules::positive(density).map_err(|e| {
