@@ -50,6 +50,10 @@ pub fn compute_rigid_contacts(
     mut bodies: Query<&mut MaterialPoints>,
     mut blocks: Query<(Entity, BlockData)>,
 ) {
+    // Without blocks no contact force was ever written: nothing to reset.
+    if blocks.is_empty() {
+        return;
+    }
     for mut points in &mut bodies {
         points
             .contact_force
