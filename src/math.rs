@@ -44,6 +44,11 @@ impl SymTensor {
         DVec2::new(self.xx * n.x + self.xy * n.y, self.xy * n.x + self.yy * n.y)
     }
 
+    /// Sum of the three normal components (tr σ).
+    pub fn trace3(&self) -> Real {
+        self.xx + self.yy + self.zz
+    }
+
     /// Full double contraction a : b, counting the shear component twice.
     pub fn contract(&self, other: &Self) -> Real {
         self.xx * other.xx + self.yy * other.yy + self.zz * other.zz + 2.0 * self.xy * other.xy

@@ -33,6 +33,7 @@ pub fn update_stress(
             };
             match &material.model {
                 MaterialModel::LinearElastic(m) => step.apply(m, &mut points, &scratch.stencils),
+                MaterialModel::DruckerPrager(m) => step.apply(m, &mut points, &scratch.stencils),
             }
         }
     }

@@ -6,8 +6,10 @@
 //! a model through [`MaterialModel`].
 
 mod elasticity_linear;
+mod plasticity_drucker_prager;
 
 pub use elasticity_linear::LinearElastic;
+pub use plasticity_drucker_prager::DruckerPrager;
 
 use crate::math::{Real, SymTensor};
 use serde::{Deserialize, Serialize};
@@ -31,6 +33,8 @@ pub trait ConstitutiveModel: Send + Sync {
 pub enum MaterialModel {
     /// Isotropic linear elasticity with a Jaumann stress rate.
     LinearElastic(LinearElastic),
+    /// Drucker–Prager plasticity with a tension cut-off (eqs. 15–17).
+    DruckerPrager(DruckerPrager),
 }
 
 impl MaterialModel {
@@ -38,6 +42,7 @@ impl MaterialModel {
     pub fn check(&self) -> Result<(), String> {
         match self {
             Self::LinearElastic(m) => m.check(),
+            Self::DruckerPrager(m) => m.check(),
         }
     }
 
@@ -45,6 +50,7 @@ impl MaterialModel {
     pub fn as_model(&self) -> &dyn ConstitutiveModel {
         match self {
             Self::LinearElastic(m) => m,
+            Self::DruckerPrager(m) => m,
         }
     }
 }

@@ -1,0 +1,288 @@
+//! Drucker–Prager elastoplasticity with a tension cut-off (paper eqs. 15–17),
+//! perfectly plastic, non-associated, on a linear elastic Jaumann predictor.
+//!
+//! Stress is tension-positive: σ_m = tr σ / 3 (positive in tension), s the
+//! deviator, τ = √J₂ = √(s : s / 2). Shear yield (eq. 15a) F = τ + η σ_m − ξ c,
+//! potential (eq. 15b) G = τ + η̄ σ_m; tension cut-off (eq. 17) F_t = σ_m − σ_t,
+//! G_t = σ_m. η, ξ, η̄ follow eq. 16 (the plane-strain match to Mohr–Coulomb).
+
+use super::{ConstitutiveModel, LinearElastic};
+use crate::math::{Real, SymTensor};
+use crate::scene::rules::{non_negative, poisson_ratio, positive};
+use serde::{Deserialize, Serialize};
+
+/// Parameters of the model (scene `DruckerPrager((...))`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DruckerPrager {
+    /// Young's modulus E (Pa), > 0.
+    pub youngs_modulus: Real,
+    /// Poisson's ratio ν in (−1, 0.5).
+    pub poisson_ratio: Real,
+    /// Friction angle φ (degrees), in [0, 90).
+    pub friction_angle: Real,
+    /// Dilation angle ψ (degrees), in [0, φ]. Default 0: no volume change
+    /// in plastic shear, the usual choice for sands at critical state.
+    #[serde(default)]
+    pub dilation_angle: Real,
+    /// Cohesion c (Pa), ≥ 0. Default 0: a cohesionless soil.
+    #[serde(default)]
+    pub cohesion: Real,
+    /// Tension cut-off σ_t (Pa), ≥ 0; capped at the apex ξ c / η. Default 0:
+    /// a cohesionless soil carries no tension.
+    #[serde(default)]
+    pub tension_cutoff: Real,
+}
+
+/// η (or η̄) of eq. 16a/16c for an angle in degrees.
+fn eta(angle: Real) -> Real {
+    let t = angle.to_radians().tan();
+    3.0 * t / (9.0 + 12.0 * t * t).sqrt()
+}
+
+/// ξ of eq. 16b.
+fn xi(angle: Real) -> Real {
+    let t = angle.to_radians().tan();
+    3.0 / (9.0 + 12.0 * t * t).sqrt()
+}
+
+impl DruckerPrager {
+    /// Checks the parameter ranges; the message names the field.
+    pub fn check(&self) -> Result<(), String> {
+        positive(self.youngs_modulus).map_err(|e| format!("youngs_modulus: {e}"))?;
+        poisson_ratio(self.poisson_ratio).map_err(|e| format!("poisson_ratio: {e}"))?;
+        if !(0.0..90.0).contains(&self.friction_angle) {
+            return Err(format!(
+                "friction_angle must be in [0, 90) degrees, got {}",
+                self.friction_angle
+            ));
+        }
+        if !(0.0..=self.friction_angle).contains(&self.dilation_angle) {
+            return Err(format!(
+                "dilation_angle must be in [0, friction_angle], got {}",
+                self.dilation_angle
+            ));
+        }
+        non_negative(self.cohesion).map_err(|e| format!("cohesion: {e}"))?;
+        non_negative(self.tension_cutoff).map_err(|e| format!("tension_cutoff: {e}"))?;
+        Ok(())
+    }
+
+    /// The elastic part.
+    fn elastic(&self) -> LinearElastic {
+        LinearElastic {
+            youngs_modulus: self.youngs_modulus,
+            poisson_ratio: self.poisson_ratio,
+        }
+    }
+
+    /// The shear yield function F = τ + η σ_m − ξ c at `stress` (eq. 15a).
+    pub fn shear_yield(&self, stress: &SymTensor) -> Real {
+        let (mean, _, tau) = invariants(stress);
+        tau + eta(self.friction_angle) * mean - xi(self.friction_angle) * self.cohesion
+    }
+
+    /// The tension cut-off in force: σ_t capped at the apex of the cone.
+    fn cutoff(&self) -> Real {
+        let eta = eta(self.friction_angle);
+        if eta > 0.0 {
+            self.tension_cutoff
+                .min(xi(self.friction_angle) * self.cohesion / eta)
+        } else {
+            self.tension_cutoff
+        }
+    }
+
+    /// Returns a trial stress to the admissible region (Huang et al. 2015
+    /// for the corner): shear return along G, tension return along G_t, and
+    /// the corner where both surfaces meet.
+    fn return_map(&self, trial: SymTensor) -> SymTensor {
+        let (eta, xi, eta_bar) = (
+            eta(self.friction_angle),
+            xi(self.friction_angle),
+            eta(self.dilation_angle),
+        );
+        let elastic = self.elastic();
+        let (shear, bulk) = (
+            elastic.shear_modulus(),
+            elastic.lame_lambda() + 2.0 / 3.0 * elastic.shear_modulus(),
+        );
+        let sigma_t = self.cutoff();
+        let (mean, deviator, tau) = invariants(&trial);
+        let f_shear = tau + eta * mean - xi * self.cohesion;
+        let f_tension = mean - sigma_t;
+        if f_shear <= 0.0 && f_tension <= 0.0 {
+            return trial;
+        }
+        // τ at the corner of the two surfaces and the slope of the line
+        // dividing the shear and tension return regions.
+        let tau_corner = xi * self.cohesion - eta * sigma_t;
+        let alpha = (1.0 + eta * eta).sqrt() - eta;
+        let region = tau - tau_corner - alpha * (mean - sigma_t);
+        let (new_mean, new_tau) = if f_shear > 0.0 && region > 0.0 {
+            let lambda = f_shear / (shear + bulk * eta * eta_bar);
+            let (m, t) = (mean - lambda * bulk * eta_bar, tau - lambda * shear);
+            if t < 0.0 {
+                (sigma_t.min(m), 0.0)
+            } else {
+                (m, t)
+            }
+        } else {
+            (sigma_t, tau.min(tau_corner.max(0.0)))
+        };
+        let scale = if tau > 0.0 { new_tau / tau } else { 0.0 };
+        let s = deviator * scale;
+        SymTensor::new(s.xx + new_mean, s.yy + new_mean, s.xy, s.zz + new_mean)
+    }
+}
+
+/// Mean stress σ_m, deviator s and τ = √J₂ of a plane-strain stress.
+fn invariants(stress: &SymTensor) -> (Real, SymTensor, Real) {
+    let mean = stress.trace3() / 3.0;
+    let s = SymTensor::new(
+        stress.xx - mean,
+        stress.yy - mean,
+        stress.xy,
+        stress.zz - mean,
+    );
+    (mean, s, (0.5 * s.contract(&s)).sqrt())
+}
+
+impl ConstitutiveModel for DruckerPrager {
+    fn update_stress(&self, stress: &mut SymTensor, d: &SymTensor, w: Real, dt: Real) {
+        let mut trial = *stress;
+        self.elastic().update_stress(&mut trial, d, w, dt);
+        *stress = self.return_map(trial);
+    }
+
+    fn p_wave_modulus(&self) -> Real {
+        self.elastic().p_wave_modulus()
+    }
+
+    fn stored_energy_density(&self, stress: &SymTensor) -> Real {
+        self.elastic().stored_energy_density(stress)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SAND: DruckerPrager = DruckerPrager {
+        youngs_modulus: 2e7,
+        poisson_ratio: 0.3,
+        friction_angle: 30.0,
+        dilation_angle: 0.0,
+        cohesion: 1e4,
+        tension_cutoff: 5e3,
+    };
+
+    /// Drives simple shear γ̇ in steps from an isotropic state σ_m = p0.
+    fn shear_path(model: &DruckerPrager, p0: Real, steps: usize, dgamma: Real) -> Vec<SymTensor> {
+        let mut s = SymTensor::new(p0, p0, 0.0, p0);
+        let d = SymTensor::new(0.0, 0.0, 0.5 * dgamma, 0.0);
+        (0..steps)
+            .map(|_| {
+                model.update_stress(&mut s, &d, 0.0, 1.0);
+                s
+            })
+            .collect()
+    }
+
+    #[test]
+    fn shear_is_elastic_then_stays_on_the_yield_surface_where_the_criterion_says() {
+        // Under simple shear at constant mean stress (ψ = 0: no dilation)
+        // τ = G γ until τ_y = ξ c − η σ_m (eq. 15a), then τ = τ_y.
+        let p0 = -1e5;
+        let g = SAND.elastic().shear_modulus();
+        let tau_y = xi(30.0) * SAND.cohesion - eta(30.0) * p0;
+        let dgamma = 1e-5;
+        let path = shear_path(&SAND, p0, 2000, dgamma);
+        for (k, s) in path.iter().enumerate() {
+            let (mean, _, tau) = invariants(s);
+            let elastic = g * dgamma * (k + 1) as Real;
+            // Round-off of a few thousand increments: 1e-9 relative.
+            assert!(
+                (mean - p0).abs() < 1e-9 * p0.abs(),
+                "mean drifted to {mean}"
+            );
+            if elastic < tau_y {
+                assert!(
+                    (tau - elastic).abs() < 1e-9 * tau_y,
+                    "step {k}: {tau} vs elastic {elastic}"
+                );
+            } else {
+                assert!(
+                    (tau - tau_y).abs() < 1e-9 * tau_y,
+                    "step {k}: {tau} vs yield {tau_y}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn dilation_lowers_the_mean_stress_while_shearing() {
+        let dilatant = DruckerPrager {
+            dilation_angle: 10.0,
+            ..SAND
+        };
+        let path = shear_path(&dilatant, -1e5, 2000, 1e-5);
+        let last = path.last().unwrap();
+        let (mean, _, _) = invariants(last);
+        // Plastic dilation under constrained volume raises confinement
+        // (compression grows): the mean stress becomes more negative.
+        assert!(mean < -1e5, "{mean}");
+        assert!(dilatant.shear_yield(last).abs() < 1e-6 * 1e5);
+    }
+
+    #[test]
+    fn tension_is_cut_off() {
+        // Isotropic extension: σ_m stops at σ_t.
+        let mut s = SymTensor::ZERO;
+        let d = SymTensor::new(1e-4, 1e-4, 0.0, 0.0);
+        for _ in 0..100 {
+            SAND.update_stress(&mut s, &d, 0.0, 1.0);
+        }
+        let (mean, _, tau) = invariants(&s);
+        assert!(
+            (mean - SAND.tension_cutoff).abs() < 1e-9 * SAND.tension_cutoff,
+            "{mean}"
+        );
+        assert!(tau <= xi(30.0) * SAND.cohesion - eta(30.0) * mean + 1e-9);
+        // A cohesionless sand carries no tension at all.
+        let loose = DruckerPrager {
+            cohesion: 0.0,
+            tension_cutoff: 0.0,
+            ..SAND
+        };
+        let mut s = SymTensor::ZERO;
+        loose.update_stress(&mut s, &d, 0.0, 1.0);
+        assert!(
+            invariants(&s).0.abs() < 1e-9 && invariants(&s).2.abs() < 1e-9,
+            "{s:?}"
+        );
+    }
+
+    #[test]
+    fn a_rigid_rotation_turns_the_stress_and_keeps_its_invariants() {
+        // At yield, spin without strain: the Jaumann rate rotates σ, the
+        // invariants (and so F) do not change to first order in ω dt.
+        let path = shear_path(&SAND, -1e5, 2000, 1e-5);
+        let mut s = *path.last().unwrap();
+        let before = invariants(&s);
+        let spin = 1e-3;
+        for _ in 0..100 {
+            SAND.update_stress(&mut s, &SymTensor::ZERO, spin, 1.0);
+        }
+        let after = invariants(&s);
+        // Explicit rotation: relative error of order (ω dt)² per step.
+        assert!((after.0 - before.0).abs() < 1e-6 * before.0.abs());
+        assert!(
+            (after.2 - before.2).abs() < 1e-4 * before.2,
+            "{} vs {}",
+            after.2,
+            before.2
+        );
+        assert!(SAND.shear_yield(&s) < 1e-4 * before.2);
+    }
+}
