@@ -48,6 +48,9 @@ enum Command {
         /// Worker threads [default: all cores].
         #[arg(long)]
         threads: Option<usize>,
+        /// Time this scene's first steps instead of the standard block.
+        #[arg(long)]
+        scene: Option<PathBuf>,
     },
 }
 
@@ -65,7 +68,11 @@ fn main() -> ExitCode {
             points,
             steps,
             threads,
-        } => with_threads(threads, || run_bench(points, steps)),
+            scene,
+        } => with_threads(threads, || match scene {
+            Some(path) => bench_scene(&path, steps),
+            None => run_bench(points, steps),
+        }),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -171,6 +178,21 @@ fn progress_bar(total: u64, quiet: bool) -> ProgressBar {
             .unwrap_or_else(|_| ProgressStyle::default_bar());
     bar.set_style(style);
     bar
+}
+
+fn bench_scene(path: &Path, steps: u64) -> Result<(), String> {
+    let mut sim = Simulation::from_scene_file(path).map_err(|e| e.to_string())?;
+    let t = bench::measure(&mut sim, 5, steps).map_err(|e| e.to_string())?;
+    println!(
+        "{}: {} points, {} steps, {} threads: {:.3} s, {:.2} M particle-updates/s",
+        sim.name(),
+        t.points,
+        t.steps,
+        rayon::current_num_threads(),
+        t.seconds,
+        t.updates_per_second() / 1e6
+    );
+    Ok(())
 }
 
 fn run_bench(points: usize, steps: u64) -> Result<(), String> {
