@@ -163,4 +163,31 @@ mod tests {
         assert_eq!(c[1].fix, Fix { x: false, y: true });
         assert_eq!(c[3].fix, Fix { x: true, y: false });
     }
+
+    #[test]
+    fn region_constraints_hold_the_nodes_inside_and_merge_with_edges() {
+        let grid = Grid {
+            origin: DVec2::ZERO,
+            cell_size: 0.5,
+            cells: [4, 2],
+            edges: EdgeConditions {
+                bottom: EdgeCondition::Slip,
+                ..Default::default()
+            },
+        };
+        // A symmetry line x = 1 (nodes 2, 7, 12) holding x only.
+        let line = RegionConstraint {
+            min: DVec2::new(1.0, 0.0),
+            max: DVec2::new(1.0, 1.0),
+            fix_x: true,
+            fix_y: false,
+        };
+        let c = grid.layer_constraints(&[line]);
+        let at = |node: u32| c.iter().find(|c| c.node == node).map(|c| c.fix);
+        assert_eq!(at(7), Some(Fix { x: true, y: false }));
+        assert_eq!(at(12), Some(Fix { x: true, y: false }));
+        // Node 2 is also on the slip bottom edge: both components held.
+        assert_eq!(at(2), Some(Fix { x: true, y: true }));
+        assert_eq!(at(6), None);
+    }
 }
