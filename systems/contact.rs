@@ -33,14 +33,16 @@ type BlockData = (
 /// the point's disk against the block's shape (parry's contact query gives
 /// the depth and the normal from block to point; δ is that depth or the
 /// disk's overlap area, per `ContactSettings::penetration`), then eq. 18 with the
-/// relative velocity V_p − (v + ω × r) at the contact point and the pair's
+/// relative velocity (V_p + L_p (x_c − x_p)) − (v + ω × r) at the contact
+/// point x_c (the material's velocity there, so a rolling body does not drag
+/// its own friction spring) and the pair's
 /// tangential spring from the previous step (dropped on separation). The
 /// force goes to the point's `contact_force`, the opposite force and its
 /// torque about the centre of mass to the block's `Reaction`, both summed in
 /// that fixed order.
 ///
 /// Reads: `Clock`, `ContactSettings`, blocks (shape, pose, velocity, mass, law, neighbour list),
-/// `MaterialPoints` (position, velocity, contact radius).
+/// `MaterialPoints` (position, velocity, velocity gradient, contact radius).
 /// Writes: `MaterialPoints::contact_force`, `BlockContacts`, `Reaction`.
 pub fn compute_rigid_contacts(
     clock: Res<Clock>,
@@ -85,8 +87,10 @@ pub fn compute_rigid_contacts(
                 let radius = points.contact_radius[i];
                 let geometry =
                     disk_shape_contact(points.position[i], radius, &*shape.0, &parry_pose)?;
+                let material_velocity = points.velocity[i]
+                    + points.velocity_gradient[i] * (geometry.point - points.position[i]);
                 let relative =
-                    points.velocity[i] - velocity_at(pose, velocity, mass, geometry.point);
+                    material_velocity - velocity_at(pose, velocity, mass, geometry.point);
                 let carried = previous
                     .binary_search_by(|c| (c.body, c.point).cmp(&(body, p)))
                     .map_or(DVec2::ZERO, |k| previous[k].tangential);

@@ -82,15 +82,17 @@ fn both_force_applications_deliver_the_whole_contact_force() {
 
 #[test]
 fn block_slides_down_a_slope_at_the_friction_limited_acceleration() {
-    let sim = common::run_scene(&common::load_scene("sliding_45.ron"));
+    let scene = common::load_scene("sliding_45.ron");
+    let mut sim = common::run_scene(&scene);
     let g: Real = 9.81;
     let theta = std::f64::consts::FRAC_PI_4;
     let a = g * (theta.sin() - 0.5 * theta.cos());
-    let last = *common::probe_samples(&sim, "centre")
-        .last()
-        .expect("samples");
-    let t = last.time;
-    let (s, v) = (last.displacement.x, last.velocity.x);
+    let t = scene.time.end;
+    // The reference is the motion of a rigid block, so the block's centre of
+    // mass is compared: a single point's velocity also carries the elastic
+    // block's vibration (±1 m/s at the centre point, measured).
+    let (u, v) = common::centre_of_mass_motion(sim.points_of("block").expect("block"));
+    let (s, v) = (u.x, v.x);
     let (s_exact, v_exact) = (0.5 * a * t * t, a * t);
     println!(
         "sliding 45: s = {s:.4} m vs {s_exact:.4} m ({:+.3}%), v = {v:.4} m/s vs {v_exact:.4} m/s ({:+.3}%)",

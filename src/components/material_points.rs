@@ -44,6 +44,10 @@ pub struct MaterialPoints {
     pub volume: Vec<Real>,
     /// In-plane deformation gradient F (F_zz = 1 in plane strain).
     pub deformation_gradient: Vec<DMat2>,
+    /// Velocity gradient L = ∇v at the point from the last stress update;
+    /// contacts use it for the velocity of the material at the contact
+    /// point, V_p + L (x_c − x_p), so a rolling body does not drag.
+    pub velocity_gradient: Vec<DMat2>,
     /// Cauchy stress σ_p.
     pub stress: Vec<SymTensor>,
     /// Accumulated small strain ∫ D dt (logarithmic for straight paths).
@@ -80,6 +84,7 @@ impl MaterialPoints {
         self.initial_volume.push(p.volume);
         self.volume.push(p.volume);
         self.deformation_gradient.push(DMat2::IDENTITY);
+        self.velocity_gradient.push(DMat2::ZERO);
         self.stress.push(p.stress);
         self.strain.push(SymTensor::ZERO);
         self.external_force.push(DVec2::ZERO);

@@ -54,3 +54,22 @@ pub fn edited_wave_scene(tag: &str, from: &str, to: &str) -> (PathBuf, PathBuf) 
     std::fs::write(&scene, text.replacen(from, to, 1)).expect("scene written");
     (base, scene)
 }
+
+/// Motion of a body's centre of mass: (displacement, velocity), the
+/// mass-weighted means over its points.
+pub fn centre_of_mass_motion(points: &MaterialPoints) -> (DVec2, DVec2) {
+    let total = points.total_mass();
+    let mean = |column: &[DVec2]| {
+        points
+            .mass
+            .iter()
+            .zip(column)
+            .map(|(m, x)| *m * *x)
+            .sum::<DVec2>()
+            / total
+    };
+    (
+        mean(&points.position) - mean(&points.initial_position),
+        mean(&points.velocity),
+    )
+}
