@@ -1,51 +1,46 @@
 //! Algorithm 1, lines 5–8: the neighbour lists of the rigid blocks.
 
 use crate::components::{
-    BodyIndex, MaterialPoints, NeighbourList, Pose, RigidShape, RigidVelocity,
+    BodyIndex, MaterialPoints, NeighbourList, Pose, RigidShape, RigidVelocity, StepTravel,
     sort_into_scene_order,
 };
 use crate::math::{DVec2, Real};
 use crate::resources::{Clock, ContactSettings, Grid};
-use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
-use rayon::prelude::*;
 
 /// Rebuilds a block's list of nearby points every `iter_period` steps, or
 /// earlier when the points and the block together could have moved by the
 /// margin since the last rebuild (the travel guard; counted in
-/// `NeighbourList::early_rebuilds`). Listed are the points whose disk
+/// `NeighbourList::early_rebuilds`). A point's share of the travel is the
+/// largest actual step of any point (`StepTravel`, from the last update),
+/// the block's is its speed bound |v| + |ω| × (AABB diagonal) times Δt. Listed are the points whose disk
 /// reaches the block's bounding box grown by the margin, bodies in scene
 /// order, points in order.
 ///
-/// Reads: `Clock`, `Grid`, `ContactSettings`, `MaterialPoints`, block pose,
+/// Reads: `Clock`, `Grid`, `ContactSettings`, `MaterialPoints`, `StepTravel`, block pose,
 /// velocity and shape. Writes: `NeighbourList`.
 pub fn rebuild_neighbour_lists(
     clock: Res<Clock>,
     grid: Res<Grid>,
     settings: Res<ContactSettings>,
     mut order: Local<Vec<(BodyIndex, Entity)>>,
-    bodies: Query<(Entity, &BodyIndex, &MaterialPoints)>,
+    bodies: Query<(Entity, &BodyIndex, &MaterialPoints, &StepTravel)>,
     mut blocks: Query<(&RigidShape, &Pose, &RigidVelocity, &mut NeighbourList)>,
 ) {
     if blocks.is_empty() {
         return;
     }
-    sort_into_scene_order(&mut order, bodies.iter().map(|(e, i, _)| (*i, e)));
-    let fastest_point = bodies
+    sort_into_scene_order(&mut order, bodies.iter().map(|(e, i, _, _)| (*i, e)));
+    let point_step = bodies
         .iter()
-        .map(|(_, _, p)| {
-            p.velocity
-                .par_chunks(MIN_POINTS_PER_TASK)
-                .map(|c| c.iter().fold(0.0, |m: Real, v| m.max(v.length())))
-                .reduce(|| 0.0, Real::max)
-        })
+        .map(|(_, _, _, travel)| travel.0)
         .fold(0.0, Real::max);
     let margin = settings.margin_or(grid.cell_size);
     for (shape, pose, velocity, mut list) in &mut blocks {
         let aabb = shape.0.compute_aabb(&pose.to_parry());
         let reach = (aabb.maxs - aabb.mins).length();
         let block_speed = velocity.linear.length() + velocity.angular.abs() * reach;
-        list.travel += (fastest_point + block_speed) * clock.dt;
+        list.travel += point_step + block_speed * clock.dt;
         // Age 0: never built (a new block).
         let due = list.age == 0 || list.age >= settings.period();
         let unsafe_travel = list.travel >= margin;
@@ -62,7 +57,7 @@ pub fn rebuild_neighbour_lists(
         );
         list.points.clear();
         for (_, entity) in order.iter() {
-            let Ok((_, _, points)) = bodies.get(*entity) else {
+            let Ok((_, _, points, _)) = bodies.get(*entity) else {
                 continue;
             };
             for (p, (x, r)) in points

@@ -6,12 +6,8 @@ use crate::components::{
 use crate::contact::{ContactLaw, ShapeContact, pair_force, shape_shape_contacts};
 use crate::math::{DVec2, Real};
 use crate::resources::{BlockContactHistory, BlockContactKey, Clock, Gravity};
-use crate::rigid::{advance, integrate_dynamic, velocity_at};
+use crate::rigid::{MAX_SUBSTEPS, advance, integrate_dynamic, substeps_needed, velocity_at};
 use bevy_ecs::prelude::*;
-
-/// Most sub-steps of one MPM step: beyond this the block contacts are too
-/// stiff for the time step by far, and the run is better with a smaller dt.
-const MAX_SUBSTEPS: u32 = 1000;
 
 /// The components of a block this system reads and writes.
 type BlockData = (
@@ -44,17 +40,7 @@ pub struct RigidScratch {
     contacts: Vec<ShapeContact>,
     forces: Vec<(DVec2, Real)>,
     history: Vec<(BlockContactKey, DVec2)>,
-}
-
-/// The law of a contact between two blocks: the softer stiffnesses, the
-/// smaller friction and the larger damping of the two.
-fn pair_law(a: &ContactLaw, b: &ContactLaw) -> ContactLaw {
-    ContactLaw {
-        normal_stiffness: a.normal_stiffness.min(b.normal_stiffness),
-        tangential_stiffness: a.tangential_stiffness.min(b.tangential_stiffness),
-        friction: a.friction.min(b.friction),
-        normal_damping: a.normal_damping.max(b.normal_damping),
-    }
+    substep_input: Vec<(RigidMotion, Real, ContactLaw)>,
 }
 
 /// Dynamic blocks: symplectic Euler from this step's reaction of the points,
@@ -91,7 +77,14 @@ pub fn move_rigid_blocks(
         });
     }
     scratch.blocks.sort_unstable_by_key(|b| b.index);
-    let substeps = substeps(&scratch.blocks, clock.dt);
+    scratch.substep_input.clear();
+    scratch.substep_input.extend(
+        scratch
+            .blocks
+            .iter()
+            .map(|b| (b.motion, b.mass.mass, b.law)),
+    );
+    let substeps = substeps_needed(&scratch.substep_input, clock.dt).min(MAX_SUBSTEPS);
     let dt = clock.dt / substeps as Real;
     for _ in 0..substeps {
         block_forces(scratch, gravity.0, dt, &mut history.0);
@@ -120,31 +113,6 @@ pub fn move_rigid_blocks(
     }
 }
 
-/// Sub-steps for this step: enough that every pair in contact with a
-/// dynamic block gets ten sub-steps per period 2π √(m/k_n).
-fn substeps(blocks: &[BlockState], dt: Real) -> u32 {
-    let mut shortest = Real::INFINITY;
-    for (i, a) in blocks.iter().enumerate() {
-        for b in &blocks[i + 1..] {
-            let masses = [(a.motion, a.mass.mass), (b.motion, b.mass.mass)];
-            let lightest = masses
-                .iter()
-                .filter(|(m, _)| *m == RigidMotion::Dynamic)
-                .map(|(_, mass)| *mass)
-                .fold(Real::INFINITY, Real::min);
-            if lightest.is_finite() {
-                let k = pair_law(&a.law, &b.law).normal_stiffness;
-                shortest = shortest.min(std::f64::consts::TAU * (lightest / k).sqrt());
-            }
-        }
-    }
-    if shortest.is_finite() {
-        ((10.0 * dt / shortest).ceil() as u32).clamp(1, MAX_SUBSTEPS)
-    } else {
-        1
-    }
-}
-
 /// Force and torque on every block for one sub-step: the points' reaction,
 /// gravity for dynamic blocks, and the block–block contacts, whose
 /// tangential springs are read from and written back to `history`.
@@ -159,6 +127,7 @@ fn block_forces(
         contacts,
         forces,
         history: next,
+        ..
     } = scratch;
     forces.clear();
     forces.extend(blocks.iter().map(|b| {
@@ -184,7 +153,7 @@ fn block_forces(
                 &b.pose.to_parry(),
                 contacts,
             );
-            let law = pair_law(&a.law, &b.law);
+            let law = a.law.pair(&b.law);
             let (center_a, center_b) = (a.mass.center(&a.pose), b.mass.center(&b.pose));
             for c in contacts.iter() {
                 let key = (a.index, b.index, c.features);

@@ -142,6 +142,17 @@ fn bad_blocks_are_refused_and_risky_ones_warned() {
         warnings.contains("overlaps a body at the start by 4"),
         "{warnings}"
     );
+    // Block-block contacts far too stiff for the step: more sub-steps than
+    // are taken: with k_n = 1e18 N/m the dropped box (200 kg/m) has a
+    // contact period 2π sqrt(m / k_n) = 8.9e-8 s, 11 000 sub-steps of 1e-4 s.
+    let mut scene = common::load_scene("rigid_drop.ron");
+    scene.blocks[0].contact.normal_stiffness = 1e18;
+    scene.blocks[1].contact.normal_stiffness = 1e18;
+    let sim = Simulation::from_scene(&scene).unwrap();
+    let warnings = sim.warnings().join("\n");
+    assert!(warnings.contains("sub-steps per step"), "{warnings}");
+    let quiet = Simulation::from_scene(&common::load_scene("rigid_drop.ron")).unwrap();
+    assert!(quiet.warnings().is_empty(), "{:?}", quiet.warnings());
 }
 
 /// The samples of the block named `name`.
@@ -254,5 +265,46 @@ fn given_mass_properties_match_those_from_a_density() {
         "{} vs {}",
         a.origin,
         b.origin
+    );
+}
+
+#[test]
+fn travel_guard_rebuilds_early_and_catches_a_falling_block() {
+    // The block falls at 2 m/s from 5 cm above the ground with the lists
+    // rebuilt only every 100 000 steps: the first list is empty, so only
+    // the guard (travel ≥ the 0.02 m margin) can let the contact be seen.
+    let mut scene = common::load_scene("block_on_ground.ron");
+    scene.blocks[0].position.y -= 0.05;
+    scene.bodies[0].velocity = mpdem::scene::InitialVelocity::Constant(DVec2::new(0.0, -2.0));
+    scene.contact.iter_period = Some(100_000);
+    scene.time.end = 0.1;
+    let mut sim = Simulation::from_scene(&scene).expect("scene");
+    let ground_top = 0.05;
+    let mut lowest = Real::INFINITY;
+    while sim.world().resource::<Clock>().time < scene.time.end {
+        sim.step().expect("step");
+        let points = sim.points_of("block").expect("block");
+        let disk_bottom = points
+            .position
+            .iter()
+            .zip(&points.contact_radius)
+            .map(|(x, r)| x.y - r)
+            .fold(Real::INFINITY, Real::min);
+        lowest = lowest.min(disk_bottom);
+    }
+    let mut lists = sim.world_mut().query::<&mpdem::components::NeighbourList>();
+    let early = lists.single(sim.world()).expect("one block").early_rebuilds;
+    println!(
+        "travel guard: {early} early rebuilds, deepest disk {:.2e} m into the ground",
+        ground_top - lowest
+    );
+    assert!(early >= 2, "the guard never fired ({early})");
+    // A rigid block of 120 kg/m stopped from 2 m/s by its 10 bottom springs
+    // of 1e7 N/m sinks v sqrt(M / (10 k_n)) = 2.2e-3 m (the elastic block
+    // less); passing through would be 0.4 m.
+    assert!(
+        ground_top - lowest < 2.2e-3,
+        "disks sank {} m",
+        ground_top - lowest
     );
 }

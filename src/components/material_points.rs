@@ -25,6 +25,12 @@ pub struct NewPoint {
     pub contact_radius: Real,
 }
 
+/// The largest distance any point of the body moved in the last
+/// grid-to-particle update (m). The contact broad phase adds it up to know
+/// when a point may have left a neighbour list's margin.
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq)]
+pub struct StepTravel(pub Real);
+
 /// Every point of one body, one column per field. All columns have the same
 /// length; index p is the same point in every column. Points keep their
 /// order for the whole run, so an index identifies a point.

@@ -12,7 +12,7 @@ pub use body::{
     BodyIndex, BodyName, Material, RegionConstraint, RegionConstraints, sort_into_scene_order,
 };
 pub use grid_layer::{Fix, GridLayer, GridNode, NodeConstraint};
-pub use material_points::{MaterialPoints, NewPoint};
+pub use material_points::{MaterialPoints, NewPoint, StepTravel};
 pub use rigid::{
     BlockContactLaw, BlockContacts, BlockId, BlockOutline, NeighbourList, PointContact, Pose,
     Reaction, RigidMass, RigidMotion, RigidShape, RigidVelocity,

@@ -42,6 +42,17 @@ impl ContactLaw {
         non_negative("friction", self.friction)?;
         non_negative("normal_damping", self.normal_damping)
     }
+
+    /// The law of a contact between two blocks with laws `self` and `other`:
+    /// the softer stiffnesses, the smaller friction and the larger damping.
+    pub fn pair(&self, other: &ContactLaw) -> ContactLaw {
+        ContactLaw {
+            normal_stiffness: self.normal_stiffness.min(other.normal_stiffness),
+            tangential_stiffness: self.tangential_stiffness.min(other.tangential_stiffness),
+            friction: self.friction.min(other.friction),
+            normal_damping: self.normal_damping.max(other.normal_damping),
+        }
+    }
 }
 
 /// The force of one contact on body A and its new tangential spring.

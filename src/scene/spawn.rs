@@ -3,7 +3,7 @@
 use super::{InitialStress, InitialVelocity, Scene, SceneError, SourceLocation, VelocityField};
 use crate::components::{
     BodyIndex, BodyName, GridLayer, Material, MaterialPoints, NewPoint, RegionConstraints,
-    TransferScratch,
+    StepTravel, TransferScratch,
 };
 use crate::math::{DVec2, Real, SymTensor};
 use crate::resources::{
@@ -61,6 +61,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
                 points,
                 GridLayer::new(grid.node_count(), 1e-9 * lightest),
                 TransferScratch::default(),
+                StepTravel::default(),
                 RegionConstraints(spec.constraints.clone()),
             ))
             .id();

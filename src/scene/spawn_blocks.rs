@@ -1,6 +1,7 @@
 //! Spawning the rigid blocks of a validated scene, with the warnings a user
 //! needs before running (blocks overlapping bodies, a time step above the
-//! contact stability limit).
+//! contact stability limit, block contacts needing more sub-steps than are
+//! taken).
 
 use super::{MotionSpec, Scene, SceneError, SourceLocation};
 use crate::components::{
@@ -10,6 +11,7 @@ use crate::components::{
 use crate::contact::disk_shape_contact;
 use crate::math::Real;
 use crate::resources::Penetration;
+use crate::rigid::{MAX_SUBSTEPS, substeps_needed};
 use bevy_ecs::prelude::*;
 
 /// Overlap between a block and a body's disks at the start above which a
@@ -25,6 +27,7 @@ pub fn spawn_blocks(
     bodies: &[Entity],
 ) -> Result<Vec<String>, SceneError> {
     let mut warnings = Vec::new();
+    let mut substep_input = Vec::with_capacity(scene.blocks.len());
     for (index, spec) in scene.blocks.iter().enumerate() {
         let invalid = |message: String| SceneError::Invalid {
             location: SourceLocation::default(),
@@ -94,6 +97,7 @@ pub fn spawn_blocks(
                 ));
             }
         }
+        substep_input.push((motion, mass.mass, spec.contact));
         world.spawn((
             BlockId {
                 name: spec.name.clone(),
@@ -109,6 +113,12 @@ pub fn spawn_blocks(
             NeighbourList::default(),
             BlockContacts::default(),
             Reaction::default(),
+        ));
+    }
+    let needed = substeps_needed(&substep_input, scene.time.dt);
+    if needed > MAX_SUBSTEPS {
+        warnings.push(format!(
+            "the block-block contacts need {needed} sub-steps per step (ten per contact period 2π sqrt(m / k_n)); only {MAX_SUBSTEPS} are taken, so they will likely blow up: lower time.dt or the blocks' normal_stiffness"
         ));
     }
     Ok(warnings)
