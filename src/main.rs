@@ -158,7 +158,7 @@ fn run(path: &Path, out: Option<&Path>, quiet: bool) -> Result<(), String> {
     let now = sim.clock();
     let hash = sim.state_hash();
     println!(
-        "{}: {} steps to t = {} s in {:.1} s; state hash {hash:016x}; results in {}",
+        "{}: {} steps to t = {:.6} s in {:.1} s; state hash {hash:016x}; results in {}",
         sim.name(),
         now.step,
         now.time,
