@@ -1,7 +1,7 @@
 //! Algorithm 1, line 13: strain rate at the points and the constitutive update.
 
 use crate::components::{GridLayer, GridNode, Material, MaterialPoints, TransferScratch};
-use crate::materials::{ConstitutiveModel, MaterialModel};
+use crate::materials::{ConstitutiveModel, MaterialModel, PointStep};
 use crate::math::{DMat2, Real, outer, rate_of_deformation, spin};
 use crate::resources::{Clock, Grid, UpdateScheme};
 use crate::shape_functions::Stencil;
@@ -88,7 +88,13 @@ impl StrainStep<'_> {
                 *f = (DMat2::IDENTITY + l * self.dt) * *f;
                 *v = f.determinant() * v0;
                 let d = rate_of_deformation(l);
-                model.update_stress(sigma, &d, spin(l), self.dt);
+                let step = PointStep {
+                    d,
+                    w: spin(l),
+                    f: *f,
+                    dt: self.dt,
+                };
+                model.update_stress(sigma, &step);
                 *eps += d * self.dt;
             });
     }

@@ -126,7 +126,11 @@ impl MaterialPoints {
                 range.fold((0.0, 0.0), |(kinetic, strain), p| {
                     (
                         kinetic + 0.5 * self.mass[p] * self.velocity[p].length_squared(),
-                        strain + model.stored_energy_density(&self.stress[p]) * self.volume[p],
+                        strain
+                            + model.stored_energy_density(
+                                &self.stress[p],
+                                &self.deformation_gradient[p],
+                            ) * self.volume[p],
                     )
                 })
             })

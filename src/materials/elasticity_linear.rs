@@ -2,8 +2,8 @@
 //! stress rate: σ̇ = λ tr(D) I + 2μ D + W σ − σ W (D_zz = 0, so σ_zz
 //! follows λ tr D).
 
-use super::{ConstitutiveModel, jaumann_rotation};
-use crate::math::{Real, SymTensor};
+use super::{ConstitutiveModel, PointStep, jaumann_rotation};
+use crate::math::{DMat2, Real, SymTensor};
 use crate::scene::rules::{poisson_ratio, positive};
 use serde::{Deserialize, Serialize};
 
@@ -41,7 +41,8 @@ impl LinearElastic {
 
 impl ConstitutiveModel for LinearElastic {
     #[inline]
-    fn update_stress(&self, stress: &mut SymTensor, d: &SymTensor, w: Real, dt: Real) {
+    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) {
+        let PointStep { d, w, dt, .. } = *step;
         let lambda_tr = self.lame_lambda() * (d.xx + d.yy) * dt;
         let two_mu = 2.0 * self.shear_modulus() * dt;
         let elastic = SymTensor::new(
@@ -59,7 +60,7 @@ impl ConstitutiveModel for LinearElastic {
 
     /// Complementary energy ½ σ : C⁻¹ : σ, which equals the stored strain
     /// energy for linear elasticity (including any initial stress).
-    fn stored_energy_density(&self, s: &SymTensor) -> Real {
+    fn stored_energy_density(&self, s: &SymTensor, _f: &DMat2) -> Real {
         let (e, nu) = (self.youngs_modulus, self.poisson_ratio);
         let normal = s.xx * s.xx + s.yy * s.yy + s.zz * s.zz
             - 2.0 * nu * (s.xx * s.yy + s.yy * s.zz + s.zz * s.xx);
@@ -80,7 +81,7 @@ mod tests {
     fn uniaxial_strain_gives_the_constrained_modulus() {
         let mut s = SymTensor::ZERO;
         let d = SymTensor::new(1e-3, 0.0, 0.0, 0.0);
-        STEEL.update_stress(&mut s, &d, 0.0, 1.0);
+        STEEL.update_stress(&mut s, &PointStep::rate(d, 0.0, 1.0));
         let m = STEEL.p_wave_modulus();
         assert!((s.xx - m * 1e-3).abs() < 1e-6 * s.xx.abs());
         // Lateral and out-of-plane stresses are λ ε.
@@ -93,9 +94,9 @@ mod tests {
         // ε = (1e-3, -2e-4, 3e-4 shear); energy must be ½ σ:ε.
         let eps = SymTensor::new(1e-3, -2e-4, 3e-4, 0.0);
         let mut s = SymTensor::ZERO;
-        STEEL.update_stress(&mut s, &eps, 0.0, 1.0);
+        STEEL.update_stress(&mut s, &PointStep::rate(eps, 0.0, 1.0));
         let expected = 0.5 * s.contract(&eps);
-        let got = STEEL.stored_energy_density(&s);
+        let got = STEEL.stored_energy_density(&s, &DMat2::IDENTITY);
         assert!(
             (got - expected).abs() < 1e-9 * expected,
             "{got} vs {expected}"

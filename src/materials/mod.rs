@@ -11,21 +11,48 @@ mod plasticity_drucker_prager;
 pub use elasticity_linear::LinearElastic;
 pub use plasticity_drucker_prager::DruckerPrager;
 
-use crate::math::{Real, SymTensor};
+use crate::math::{DMat2, Real, SymTensor};
 use serde::{Deserialize, Serialize};
+
+/// The motion of one material point over one step, as a model sees it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointStep {
+    /// Rate of deformation D = sym L (1/s).
+    pub d: SymTensor,
+    /// In-plane spin W_xy = ½ (L_xy − L_yx) (1/s).
+    pub w: Real,
+    /// Deformation gradient at the end of the step, F^{n+1} (in-plane; F_zz = 1).
+    pub f: DMat2,
+    /// Step length Δt (s).
+    pub dt: Real,
+}
+
+impl PointStep {
+    /// A step of rate `d`, spin `w` and length `dt` from F = I (for tests and
+    /// rate-form models that do not read F).
+    pub fn rate(d: SymTensor, w: Real, dt: Real) -> Self {
+        Self {
+            d,
+            w,
+            f: DMat2::IDENTITY,
+            dt,
+        }
+    }
+}
 
 /// A stress update rule for one material point (plane strain, tension positive).
 pub trait ConstitutiveModel: Send + Sync {
-    /// Advances `stress` over one step of length `dt` given the rate of
-    /// deformation `d` and the in-plane spin `w` = W_xy (objective update).
-    fn update_stress(&self, stress: &mut SymTensor, d: &SymTensor, w: Real, dt: Real);
+    /// Advances `stress` over one step (objective: rate-form models rotate
+    /// with the spin, hyperelastic ones compute σ from F).
+    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep);
 
     /// The constrained (P-wave) modulus λ + 2μ, which sets the elastic wave
     /// speed for the time-step (CFL) limit.
     fn p_wave_modulus(&self) -> Real;
 
-    /// Elastic energy stored per unit volume at `stress` (J/m³).
-    fn stored_energy_density(&self, stress: &SymTensor) -> Real;
+    /// Elastic energy stored per unit current volume at `stress` and
+    /// deformation gradient `f` (J/m³).
+    fn stored_energy_density(&self, stress: &SymTensor, f: &DMat2) -> Real;
 }
 
 /// The constitutive models a scene can choose.

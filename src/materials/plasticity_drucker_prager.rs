@@ -6,8 +6,8 @@
 //! potential (eq. 15b) G = τ + η̄ σ_m; tension cut-off (eq. 17) F_t = σ_m − σ_t,
 //! G_t = σ_m. η, ξ, η̄ follow eq. 16 (the plane-strain match to Mohr–Coulomb).
 
-use super::{ConstitutiveModel, LinearElastic};
-use crate::math::{Real, SymTensor};
+use super::{ConstitutiveModel, LinearElastic, PointStep};
+use crate::math::{DMat2, Real, SymTensor};
 use crate::scene::rules::{non_negative, poisson_ratio, positive};
 use serde::{Deserialize, Serialize};
 
@@ -149,9 +149,9 @@ fn invariants(stress: &SymTensor) -> (Real, SymTensor, Real) {
 }
 
 impl ConstitutiveModel for DruckerPrager {
-    fn update_stress(&self, stress: &mut SymTensor, d: &SymTensor, w: Real, dt: Real) {
+    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) {
         let mut trial = *stress;
-        self.elastic().update_stress(&mut trial, d, w, dt);
+        self.elastic().update_stress(&mut trial, step);
         *stress = self.return_map(trial);
     }
 
@@ -159,8 +159,8 @@ impl ConstitutiveModel for DruckerPrager {
         self.elastic().p_wave_modulus()
     }
 
-    fn stored_energy_density(&self, stress: &SymTensor) -> Real {
-        self.elastic().stored_energy_density(stress)
+    fn stored_energy_density(&self, stress: &SymTensor, f: &DMat2) -> Real {
+        self.elastic().stored_energy_density(stress, f)
     }
 }
 
@@ -183,7 +183,7 @@ mod tests {
         let d = SymTensor::new(0.0, 0.0, 0.5 * dgamma, 0.0);
         (0..steps)
             .map(|_| {
-                model.update_stress(&mut s, &d, 0.0, 1.0);
+                model.update_stress(&mut s, &PointStep::rate(d, 0.0, 1.0));
                 s
             })
             .collect()
@@ -241,7 +241,7 @@ mod tests {
         let mut s = SymTensor::ZERO;
         let d = SymTensor::new(1e-4, 1e-4, 0.0, 0.0);
         for _ in 0..100 {
-            SAND.update_stress(&mut s, &d, 0.0, 1.0);
+            SAND.update_stress(&mut s, &PointStep::rate(d, 0.0, 1.0));
         }
         let (mean, _, tau) = invariants(&s);
         assert!(
@@ -256,7 +256,7 @@ mod tests {
             ..SAND
         };
         let mut s = SymTensor::ZERO;
-        loose.update_stress(&mut s, &d, 0.0, 1.0);
+        loose.update_stress(&mut s, &PointStep::rate(d, 0.0, 1.0));
         assert!(
             invariants(&s).0.abs() < 1e-9 && invariants(&s).2.abs() < 1e-9,
             "{s:?}"
@@ -272,7 +272,7 @@ mod tests {
         let before = invariants(&s);
         let spin = 1e-3;
         for _ in 0..100 {
-            SAND.update_stress(&mut s, &SymTensor::ZERO, spin, 1.0);
+            SAND.update_stress(&mut s, &PointStep::rate(SymTensor::ZERO, spin, 1.0));
         }
         let after = invariants(&s);
         // Explicit rotation: relative error of order (ω dt)² per step.
