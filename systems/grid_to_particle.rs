@@ -1,20 +1,31 @@
-//! Algorithm 1, line 16: velocity and position of the points (eqs. 11a/11b).
+//! Algorithm 1, line 16: velocity and position of the points (eqs. 11a/11b,
+//! or XPIC, eqs. 12a/12b).
 
-use crate::components::{GridLayer, MaterialPoints, StepTravel, TransferScratch};
+use crate::components::{GridLayer, MaterialPoints, StepTravel, TransferScratch, XpicScratch};
 use crate::math::{DVec2, Real};
 use crate::resources::{Clock, Grid, Settings};
-use crate::transfer::MIN_POINTS_PER_TASK;
+use crate::shape_functions::Stencil;
+use crate::transfer::{MIN_NODES_PER_TASK, MIN_POINTS_PER_TASK};
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
-/// With v^n = Σ S_ip v_i^n and v^{n+1} = Σ S_ip v_i^{n+1} interpolated at x^n:
-/// * eq. 11a: V^{n+1} = (1 − β)(V^n + v^{n+1} − v^n) + β v^{n+1}, where
-///   v^{n+1} − v^n = Σ S_ip a_i Δt;
-/// * eq. 11b: x^{n+1} = x^n + ½(v^n + v^{n+1}) Δt − ½ β (V^n − v^n) Δt.
+/// With v^n = Σ S_ip v_i^n, v^{n+1} = Σ S_ip v_i^{n+1} interpolated at x^n
+/// and the point's acceleration a_p Δt = v^{n+1} − v^n, less particle
+/// damping α_p |a_p| sign(V^n) per component:
+/// * eq. 11a: V^{n+1} = (1 − β)(V^n + a_p Δt) + β (v^n + a_p Δt);
+/// * eq. 11b: x^{n+1} = x^n + ½(v^n + v^{n+1}) Δt − ½ β (V^n − v^n) Δt;
+///
+/// or, with an XPIC order m (eq. 12), v* = Σ_{k=1..m} (−1)^{k+1} C(m, k) u_k
+/// on the nodes, u_1 = v_i^n and u_k = S⁺ S u_{k−1} (interpolated to the
+/// points, mapped back mass-weighted, constrained), so that
+/// S v* = [I − (I − S S⁺)^m] V^n:
+/// * eq. 12a: V^{n+1} = Σ S_ip v*_i + a_p Δt;
+/// * eq. 12b: x^{n+1} = x^n + v^n Δt + ½ (V^{n+1} − V^n) Δt.
 ///
 /// Reads: `Grid`, `Settings`, `Clock`, `GridLayer`, `TransferScratch::stencils`.
-/// Writes: `MaterialPoints` (position, velocity), `StepTravel` (the largest
-/// |x^{n+1} − x^n|, a maximum, so exact for any thread count).
+/// Writes: `MaterialPoints` (position, velocity), `TransferScratch::xpic`,
+/// `StepTravel` (the largest |x^{n+1} − x^n|, a maximum, so exact for any
+/// thread count).
 pub fn grid_to_particle(
     grid: Res<Grid>,
     settings: Res<Settings>,
@@ -23,20 +34,26 @@ pub fn grid_to_particle(
         &mut MaterialPoints,
         &mut StepTravel,
         &GridLayer,
-        &TransferScratch,
+        &mut TransferScratch,
     )>,
 ) {
     let row_len = grid.nodes()[0];
-    let (dt, beta) = (clock.dt, settings.pic_fraction);
-    for (mut points, mut travel, layer, scratch) in &mut bodies {
+    let (dt, beta, alpha) = (clock.dt, settings.pic_fraction, settings.particle_damping);
+    for (mut points, mut travel, layer, mut scratch) in &mut bodies {
+        let TransferScratch { stencils, xpic, .. } = &mut *scratch;
+        let order = settings.xpic_order.unwrap_or(0);
+        if order >= 1 {
+            xpic_velocities(order, &points.mass, layer, stencils, row_len, xpic);
+        }
         let MaterialPoints {
             position, velocity, ..
         } = &mut *points;
         let nodes = &layer.nodes;
+        let star = &xpic.star;
         travel.0 = (
             position.par_iter_mut(),
             velocity.par_iter_mut(),
-            scratch.stencils.par_iter(),
+            stencils.par_iter(),
         )
             .into_par_iter()
             .with_min_len(MIN_POINTS_PER_TASK)
@@ -46,11 +63,108 @@ pub fn grid_to_particle(
                     stencil.gather(nodes, row_len, zero, |(old, new), node, w, _| {
                         (old + w * node.velocity, new + w * node.velocity_new)
                     });
-                let step = (0.5 * (grid_old + grid_new) - 0.5 * beta * (*v - grid_old)) * dt;
+                let change = damped(grid_new - grid_old, *v, alpha);
+                let step = if order >= 1 {
+                    let smoothed =
+                        stencil.gather(star, row_len, DVec2::ZERO, |acc, u, w, _| acc + w * *u);
+                    let next = smoothed + change;
+                    let step = (grid_old + 0.5 * (next - *v)) * dt;
+                    *v = next;
+                    step
+                } else {
+                    let step = (0.5 * (grid_old + grid_new) - 0.5 * beta * (*v - grid_old)) * dt;
+                    // Undamped, v^n + a_p Δt is v^{n+1} itself (kept exact).
+                    let pic = if alpha == 0.0 {
+                        grid_new
+                    } else {
+                        grid_old + change
+                    };
+                    *v = (1.0 - beta) * (*v + change) + beta * pic;
+                    step
+                };
                 *x += step;
-                *v = (1.0 - beta) * (*v + grid_new - grid_old) + beta * grid_new;
                 step.length()
             })
             .reduce(|| 0.0, Real::max);
+    }
+}
+
+/// Local non-viscous damping of a point's velocity change `change` against
+/// its velocity `v`: each component less α |change| sign(v).
+#[inline(always)]
+fn damped(change: DVec2, v: DVec2, alpha: Real) -> DVec2 {
+    if alpha == 0.0 {
+        return change;
+    }
+    let sign = |x: Real| {
+        if x > 0.0 {
+            1.0
+        } else if x < 0.0 {
+            -1.0
+        } else {
+            0.0
+        }
+    };
+    change - alpha * change.abs() * DVec2::new(sign(v.x), sign(v.y))
+}
+
+/// Fills `xpic.star` with the XPIC(m) nodal velocity v* of eq. 12.
+fn xpic_velocities(
+    order: u32,
+    mass: &[Real],
+    layer: &GridLayer,
+    stencils: &[Stencil],
+    row_len: usize,
+    xpic: &mut XpicScratch,
+) {
+    let XpicScratch {
+        point_velocity,
+        momentum,
+        previous,
+        current,
+        star,
+    } = xpic;
+    let node_count = layer.nodes.len();
+    let m = Real::from(order);
+    star.clear();
+    star.extend(layer.nodes.iter().map(|n| m * n.velocity));
+    previous.clear();
+    previous.extend(layer.nodes.iter().map(|n| n.velocity));
+    point_velocity.resize(stencils.len(), DVec2::ZERO);
+    current.resize(node_count, DVec2::ZERO);
+    let mut coefficient = m;
+    for k in 2..=order {
+        // C(m, k) = C(m, k − 1) (m − k + 1) / k, alternating in sign.
+        coefficient *= -(m - Real::from(k) + 1.0) / Real::from(k);
+        let from = &*previous;
+        point_velocity
+            .par_iter_mut()
+            .zip(stencils.par_iter())
+            .with_min_len(MIN_POINTS_PER_TASK)
+            .for_each(|(v, stencil)| {
+                *v = stencil.gather(from, row_len, DVec2::ZERO, |acc, u, w, _| acc + w * *u);
+            });
+        let carried = &*point_velocity;
+        momentum.scatter(stencils, |p| mass[p] * carried[p], |mv, w, _| w * *mv);
+        current.iter_mut().for_each(|u| *u = DVec2::ZERO);
+        momentum.add_into(current, row_len, |u, mv| *u += mv);
+        let cutoff = layer.mass_cutoff;
+        current
+            .par_iter_mut()
+            .zip(layer.nodes.par_iter())
+            .with_min_len(MIN_NODES_PER_TASK)
+            .for_each(|(u, node)| {
+                *u = if node.mass > cutoff {
+                    *u / node.mass
+                } else {
+                    DVec2::ZERO
+                };
+            });
+        layer.constrain(current);
+        star.par_iter_mut()
+            .zip(current.par_iter())
+            .with_min_len(MIN_NODES_PER_TASK)
+            .for_each(|(s, u)| *s += coefficient * *u);
+        std::mem::swap(previous, current);
     }
 }

@@ -8,7 +8,7 @@ use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
 /// Scatters the internal force f_i,int = −Σ_p V_p σ_p · G_ip, then per node
-/// f_i = f_ext + f_int, less local damping α |f| sign(v) per component
+/// f_i = f_ext + f_int, less grid damping α_g |f| sign(v) per component
 /// (Cundall 1987), p_i ← p_i + f_i Δt and v_i^{n+1} = p_i / m_i, constrained.
 ///
 /// Reads: `Grid`, `Settings`, `Clock`, `MaterialPoints` (volume, stress),
@@ -21,7 +21,7 @@ pub fn solve_nodal_momentum(
     mut bodies: Query<(&MaterialPoints, &mut GridLayer, &mut TransferScratch)>,
 ) {
     let row_len = grid.nodes()[0];
-    let (dt, alpha) = (clock.dt, settings.damping);
+    let (dt, alpha) = (clock.dt, settings.grid_damping);
     for (points, mut layer, mut scratch) in &mut bodies {
         let TransferScratch {
             stencils,

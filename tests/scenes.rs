@@ -191,3 +191,28 @@ fn a_run_of_a_bad_scene_writes_nothing() {
     assert!(!out.exists(), "output written for a bad scene");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn damping_above_one_and_xpic_orders_out_of_range_are_refused() {
+    let from = "pic_fraction: 0.0)";
+    for (to, expected) in [
+        (
+            "pic_fraction: 0.0, grid_damping: 1.5)",
+            "expected a damping coefficient in [0, 1], got 1.5",
+        ),
+        (
+            "pic_fraction: 0.0, particle_damping: -0.1)",
+            "expected a damping coefficient in [0, 1], got -0.1",
+        ),
+        (
+            "pic_fraction: 0.0, xpic_order: Some(0))",
+            "expected an XPIC order from 1 to 10, got 0",
+        ),
+        (
+            "pic_fraction: 0.0, xpic_order: Some(11))",
+            "expected an XPIC order from 1 to 10, got 11",
+        ),
+    ] {
+        assert_error(parse_edited(from, to), line_of(from, to, to), expected);
+    }
+}

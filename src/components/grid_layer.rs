@@ -81,4 +81,11 @@ impl GridLayer {
             c.fix.apply(field(&mut self.nodes[c.node as usize]));
         }
     }
+
+    /// Applies the constraints to `values`, one per node (row-major).
+    pub fn constrain(&self, values: &mut [DVec2]) {
+        for c in &self.constraints {
+            c.fix.apply(&mut values[c.node as usize]);
+        }
+    }
 }

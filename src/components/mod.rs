@@ -17,4 +17,4 @@ pub use rigid::{
     BlockContactLaw, BlockContacts, BlockId, BlockOutline, NeighbourList, PointContact, Pose,
     Reaction, RigidMass, RigidMotion, RigidShape, RigidVelocity,
 };
-pub use transfer_scratch::{MassMomentumForce, TransferScratch};
+pub use transfer_scratch::{MassMomentumForce, TransferScratch, XpicScratch};

@@ -38,4 +38,21 @@ pub struct TransferScratch {
     pub mass_momentum: Scatter<MassMomentumForce>,
     /// Patches of the internal force scatter.
     pub internal_force: Scatter<DVec2>,
+    /// Work space of XPIC (eq. 12), sized on first use.
+    pub xpic: XpicScratch,
+}
+
+/// Work space of the XPIC(m) iteration of one body.
+#[derive(Clone, Debug, Default)]
+pub struct XpicScratch {
+    /// Velocities interpolated to the points, S u_{k−1}.
+    pub point_velocity: Vec<DVec2>,
+    /// Patches of the momentum scatter S m_p (S u_{k−1})_p.
+    pub momentum: Scatter<DVec2>,
+    /// Nodal velocities of the previous iterate u_{k−1}.
+    pub previous: Vec<DVec2>,
+    /// Nodal velocities of the current iterate u_k.
+    pub current: Vec<DVec2>,
+    /// The XPIC nodal velocity v* = Σ_k (−1)^{k+1} C(m, k) u_k.
+    pub star: Vec<DVec2>,
 }
