@@ -58,6 +58,7 @@ pub fn elastic_block_scene(points: usize) -> Scene {
         contact: Default::default(),
         probes: Vec::new(),
         output: OutputSpec::default(),
+        stages: Vec::new(),
     }
 }
 
@@ -90,6 +91,7 @@ pub fn elastic_block_on_ground_scene(points: usize) -> Scene {
             friction: 0.5,
             normal_damping: 0.0,
         },
+        present: true,
     });
     scene
 }

@@ -3,6 +3,7 @@
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use mpdem::io::RunOutput;
+use mpdem::resources::StageLog;
 use mpdem::scene::Scene;
 use mpdem::{Simulation, bench};
 use std::path::{Path, PathBuf};
@@ -146,6 +147,9 @@ fn run(path: &Path, out: Option<&Path>, quiet: bool) -> Result<(), String> {
         }
     }
     progress.finish_and_clear();
+    for w in &sim.world().resource::<StageLog>().warnings {
+        eprintln!("warning: {w}");
+    }
     output
         .finish(&mut sim, failure.is_some())
         .map_err(|e| format!("{}: cannot write output: {e}", dir.display()))?;

@@ -125,10 +125,13 @@ impl Simulation {
         Ok(())
     }
 
-    /// Steps to the scene's end time.
+    /// Steps to the end of the run: the scene's end time, or the end of its
+    /// last stage if that comes first.
     pub fn run(&mut self) -> Result<(), StepError> {
-        let end = self.clock().end;
-        self.run_until(end)
+        while !self.clock().finished() {
+            self.step()?;
+        }
+        Ok(())
     }
 
     /// Bodies in scene order with their names.

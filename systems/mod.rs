@@ -16,6 +16,7 @@ mod neighbours;
 mod nodal_solve;
 mod particle_to_grid;
 mod rigid_bodies;
+mod stages;
 mod stress_update;
 
 pub use boundary::rebuild_node_constraints;
@@ -28,6 +29,7 @@ pub use neighbours::rebuild_neighbour_lists;
 pub use nodal_solve::solve_nodal_momentum;
 pub use particle_to_grid::particle_to_grid;
 pub use rigid_bodies::move_rigid_blocks;
+pub use stages::{advance_stages, enter_stage, side_points};
 pub use stress_update::update_stress;
 
 use crate::resources::UpdateScheme;
@@ -131,6 +133,7 @@ pub fn add_default_systems(schedule: &mut Schedule, scheme: UpdateScheme) {
             advance_clock,
             record_probes_and_energy,
             record_blocks,
+            advance_stages,
         )
             .chain()
             .in_set(MpmSystems::Diagnostics),

@@ -42,8 +42,14 @@ fn local_damping_removes_four_alpha_of_the_energy_per_cycle() {
     // 10% of the expected loss: the law is exact for an oscillator; the
     // bar's nodes move nearly, not exactly, in phase.
     let loss = undamped - expected;
-    assert!((grid - expected).abs() <= 0.1 * loss, "grid {grid} vs {expected}");
-    assert!((particle - expected).abs() <= 0.1 * loss, "points {particle} vs {expected}");
+    assert!(
+        (grid - expected).abs() <= 0.1 * loss,
+        "grid {grid} vs {expected}"
+    );
+    assert!(
+        (particle - expected).abs() <= 0.1 * loss,
+        "points {particle} vs {expected}"
+    );
 }
 
 #[test]

@@ -1,6 +1,6 @@
 //! CSV time series: probes and energies.
 
-use crate::resources::{BlockLog, EnergyLog, Probes};
+use crate::resources::{BlockLog, EnergyLog, Probes, StageLog};
 use std::io::Write;
 use std::path::Path;
 
@@ -42,6 +42,27 @@ pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
             s.kinetic,
             s.strain,
             s.kinetic + s.strain
+        )?;
+    }
+    out.flush()
+}
+
+/// Writes `stages.csv`: one row per finished stage, columns stage (index),
+/// name, start, end (s), steps, reason (`duration`, `condition`, `max_time`
+/// or `scene_end`).
+pub fn write_stages(path: &Path, log: &StageLog) -> std::io::Result<()> {
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(out, "stage,name,start,end,steps,reason")?;
+    for r in &log.records {
+        writeln!(
+            out,
+            "{},{},{:e},{:e},{},{}",
+            r.index,
+            r.name,
+            r.start,
+            r.end,
+            r.steps,
+            r.reason.label()
         )?;
     }
     out.flush()

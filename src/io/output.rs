@@ -6,14 +6,14 @@ use super::plot::{Series, SeriesStyle, plot_points, plot_series};
 use super::vtk::{PointFrame, write_collection, write_outlines, write_point_frame};
 use crate::components::{BlockId, BlockOutline, BodyIndex, MaterialPoints, Pose};
 use crate::math::{DVec2, Real};
-use crate::resources::{BlockLog, EnergyLog, Grid, Probes};
+use crate::resources::{BlockLog, EnergyLog, Grid, Probes, StageLog};
 use crate::simulation::Simulation;
 use std::path::{Path, PathBuf};
 
 /// Writes a run's results into one folder:
 /// * `vtk/points_NNNNN.vtu` every frame interval and `points.pvd` (open this in ParaView);
 /// * with rigid blocks, their outlines: `vtk/blocks_NNNNN.vtu` and `blocks.pvd`, and `blocks.csv`;
-/// * `probes.csv`, `energy.csv`;
+/// * `probes.csv`, `energy.csv`, and with stages `stages.csv`;
 /// * `snapshot.png` (final state coloured by displacement magnitude),
 ///   `energy.png` and `probe_<name>_{velocity,displacement,stress}.png`.
 pub struct RunOutput {
@@ -87,6 +87,10 @@ impl RunOutput {
         let blocks = world.resource::<BlockLog>();
         if !blocks.names.is_empty() {
             csv::write_blocks(&self.dir.join("blocks.csv"), blocks)?;
+        }
+        let stages = world.resource::<StageLog>();
+        if !stages.records.is_empty() {
+            csv::write_stages(&self.dir.join("stages.csv"), stages)?;
         }
         self.plot_energy(energy)?;
         self.plot_probes(probes)?;

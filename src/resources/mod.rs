@@ -7,6 +7,7 @@ mod diagnostics;
 mod grid;
 mod records;
 mod settings;
+mod stages;
 
 pub use clock::Clock;
 pub use contact_settings::{BlockContactHistory, BlockContactKey, ContactSettings, Penetration};
@@ -14,3 +15,4 @@ pub use diagnostics::{Diagnostics, NumericalFailure};
 pub use grid::{EdgeCondition, EdgeConditions, Grid};
 pub use records::{BlockLog, BlockSample, EnergyLog, EnergySample, Probe, ProbeSample, Probes};
 pub use settings::{Gravity, Settings, UpdateScheme};
+pub use stages::{AppliedLoad, StageEndReason, StageLog, StagePlan, StageRecord};

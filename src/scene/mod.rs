@@ -10,12 +10,15 @@ pub mod rules;
 mod shapes;
 mod spawn;
 mod spawn_blocks;
+mod stages;
 mod validate;
 mod velocity_field;
 
 pub use location::SourceLocation;
 pub use shapes::Shape;
 pub use spawn::spawn_scene;
+pub use spawn_blocks::spawn_block;
+pub use stages::{BlockVelocity, Side, StageEnd, StageSpec, SurfaceTraction};
 pub use velocity_field::VelocityField;
 
 use crate::components::{RegionConstraint, RigidVelocity};
@@ -61,6 +64,11 @@ pub struct Scene {
     /// Output cadence. Default: see [`OutputSpec`].
     #[serde(default)]
     pub output: OutputSpec,
+    /// Loading stages, run in order; the run ends with the last one (or at
+    /// `time.end`, whichever comes first). Default: none, one stage to
+    /// `time.end`.
+    #[serde(default)]
+    pub stages: Vec<StageSpec>,
 }
 
 fn default_gravity() -> DVec2 {
@@ -163,6 +171,14 @@ pub struct BlockSpec {
     pub motion: MotionSpec,
     /// The DEM law of its contacts with material points.
     pub contact: ContactLaw,
+    /// Whether the block is there from the start. Default true; a block
+    /// with `false` enters when a stage adds it.
+    #[serde(default = "default_present")]
+    pub present: bool,
+}
+
+fn default_present() -> bool {
+    true
 }
 
 /// How a block moves.

@@ -7,7 +7,8 @@ use crate::components::{
 };
 use crate::math::{DVec2, Real, SymTensor};
 use crate::resources::{
-    BlockLog, Clock, Diagnostics, EnergyLog, EnergySample, Gravity, Grid, Probe, Probes,
+    BlockLog, Clock, Diagnostics, EnergyLog, EnergySample, Gravity, Grid, Probe, Probes, StageLog,
+    StagePlan,
 };
 use bevy_ecs::prelude::*;
 
@@ -136,6 +137,20 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
     };
     energy.samples.push(initial_energy);
     world.insert_resource(energy);
+    world.insert_resource(StageLog::default());
+    if !scene.stages.is_empty() {
+        let mut plan = StagePlan {
+            scene: scene.clone(),
+            current: 0,
+            started: 0.0,
+            peak_kinetic: 0.0,
+            previous_stress: Vec::new(),
+            loads: Vec::new(),
+            finished: false,
+        };
+        warnings.extend(crate::systems::enter_stage(&mut world, &mut plan, 0));
+        world.insert_resource(plan);
+    }
     Ok((world, warnings))
 }
 

@@ -3,7 +3,7 @@
 //! contact stability limit, block contacts needing more sub-steps than are
 //! taken).
 
-use super::{MotionSpec, Scene, SceneError, SourceLocation};
+use super::{BlockSpec, MotionSpec, Scene, SceneError, SourceLocation};
 use crate::components::{
     BlockContactLaw, BlockContacts, BlockId, BlockOutline, MaterialPoints, NeighbourList, Pose,
     Reaction, RigidMass, RigidMotion, RigidShape, RigidVelocity,
@@ -19,8 +19,9 @@ use bevy_ecs::prelude::*;
 /// per-mille a body placed exactly on a block shows through round-off.
 const OVERLAP_WARNING_FRACTION: Real = 0.1;
 
-/// Spawns one entity per block in scene order; `bodies` are the body
-/// entities in scene order. Returns the warnings.
+/// Spawns one entity per block present at the start (`present`), in scene
+/// order; `bodies` are the body entities in scene order. Returns the
+/// warnings.
 pub fn spawn_blocks(
     scene: &Scene,
     world: &mut World,
@@ -29,91 +30,11 @@ pub fn spawn_blocks(
     let mut warnings = Vec::new();
     let mut substep_input = Vec::with_capacity(scene.blocks.len());
     for (index, spec) in scene.blocks.iter().enumerate() {
-        let invalid = |message: String| SceneError::Invalid {
-            location: SourceLocation::default(),
-            message,
-        };
-        let shape = spec
-            .shape
-            .build()
-            .map_err(|e| invalid(format!("block '{}': {e}", spec.name)))?;
-        let pose = Pose {
-            origin: spec.position,
-            angle: spec.angle.to_radians(),
-        };
-        let mass_of = |density: Real| {
-            let props = spec.shape.mass_properties(&shape, density);
-            RigidMass {
-                mass: props.mass(),
-                inertia: props.principal_inertia(),
-                local_center: props.local_com,
-            }
-        };
-        // Fixed and kinematic blocks need only their centre of mass (the
-        // point a kinematic spin turns about): any density will do.
-        let (motion, mass, velocity) = match &spec.motion {
-            MotionSpec::Fixed => (RigidMotion::Fixed, mass_of(1.0), RigidVelocity::default()),
-            MotionSpec::Kinematic(v) => (RigidMotion::Kinematic, mass_of(1.0), *v),
-            MotionSpec::Dynamic { density, velocity } => {
-                (RigidMotion::Dynamic, mass_of(*density), *velocity)
-            }
-            MotionSpec::DynamicWithMass {
-                mass,
-                inertia,
-                center,
-                velocity,
-            } => (
-                RigidMotion::Dynamic,
-                RigidMass {
-                    mass: *mass,
-                    inertia: *inertia,
-                    local_center: *center,
-                },
-                *velocity,
-            ),
-        };
-        for &body in bodies {
-            let Some(points) = world.get::<MaterialPoints>(body) else {
-                continue;
-            };
-            warnings.extend(overlap_warning(&spec.name, points, &shape, &pose));
-            let lightest = points.mass.iter().copied().fold(Real::INFINITY, Real::min);
-            // In `Area` mode the stiffness is per area; the largest slope of the
-            // overlap area, d A / d δ = 2 r at δ = r, makes it a spring.
-            let widest = points.contact_radius.iter().copied().fold(0.0, Real::max);
-            let spring = spec
-                .contact
-                .normal_stiffness
-                .max(spec.contact.tangential_stiffness);
-            let stiffness = match scene.contact.penetration {
-                Penetration::Depth => spring,
-                Penetration::Area => spring * 2.0 * widest,
-            };
-            let limit = 2.0 * (lightest / stiffness).sqrt();
-            if scene.time.dt > limit {
-                warnings.push(format!(
-                    "time.dt = {:e} s exceeds the contact stability limit 2 sqrt(m_p / max(k_n, k_t)) = {limit:e} s of block '{}' (lightest point {lightest:e} kg/m)",
-                    scene.time.dt, spec.name
-                ));
-            }
-        }
+        let (motion, mass, _) = block_motion(spec)?;
         substep_input.push((motion, mass.mass, spec.contact));
-        world.spawn((
-            BlockId {
-                name: spec.name.clone(),
-                index: index as u32,
-            },
-            BlockOutline(spec.shape.outline()),
-            RigidShape(shape),
-            pose,
-            velocity,
-            motion,
-            mass,
-            BlockContactLaw(spec.contact),
-            NeighbourList::default(),
-            BlockContacts::default(),
-            Reaction::default(),
-        ));
+        if spec.present {
+            warnings.extend(spawn_block(scene, index, world, bodies)?);
+        }
     }
     let needed = substeps_needed(&substep_input, scene.time.dt);
     if needed > MAX_SUBSTEPS {
@@ -122,6 +43,116 @@ pub fn spawn_blocks(
         ));
     }
     Ok(warnings)
+}
+
+/// Spawns block `index` of the scene (at the start, or when a stage adds
+/// it). Returns the warnings about it (overlap with a body, a time step
+/// above the contact stability limit).
+pub fn spawn_block(
+    scene: &Scene,
+    index: usize,
+    world: &mut World,
+    bodies: &[Entity],
+) -> Result<Vec<String>, SceneError> {
+    let spec = &scene.blocks[index];
+    let mut warnings = Vec::new();
+    let shape = spec
+        .shape
+        .build()
+        .map_err(|e| invalid(format!("block '{}': {e}", spec.name)))?;
+    let pose = Pose {
+        origin: spec.position,
+        angle: spec.angle.to_radians(),
+    };
+    let (motion, mass, velocity) = block_motion(spec)?;
+    for &body in bodies {
+        let Some(points) = world.get::<MaterialPoints>(body) else {
+            continue;
+        };
+        warnings.extend(overlap_warning(&spec.name, points, &shape, &pose));
+        let lightest = points.mass.iter().copied().fold(Real::INFINITY, Real::min);
+        // In `Area` mode the stiffness is per area; the largest slope of the
+        // overlap area, d A / d δ = 2 r at δ = r, makes it a spring.
+        let widest = points.contact_radius.iter().copied().fold(0.0, Real::max);
+        let spring = spec
+            .contact
+            .normal_stiffness
+            .max(spec.contact.tangential_stiffness);
+        let stiffness = match scene.contact.penetration {
+            Penetration::Depth => spring,
+            Penetration::Area => spring * 2.0 * widest,
+        };
+        let limit = 2.0 * (lightest / stiffness).sqrt();
+        if scene.time.dt > limit {
+            warnings.push(format!(
+                "time.dt = {:e} s exceeds the contact stability limit 2 sqrt(m_p / max(k_n, k_t)) = {limit:e} s of block '{}' (lightest point {lightest:e} kg/m)",
+                scene.time.dt, spec.name
+            ));
+        }
+    }
+    world.spawn((
+        BlockId {
+            name: spec.name.clone(),
+            index: index as u32,
+        },
+        BlockOutline(spec.shape.outline()),
+        RigidShape(shape),
+        pose,
+        velocity,
+        motion,
+        mass,
+        BlockContactLaw(spec.contact),
+        NeighbourList::default(),
+        BlockContacts::default(),
+        Reaction::default(),
+    ));
+    Ok(warnings)
+}
+
+fn invalid(message: String) -> SceneError {
+    SceneError::Invalid {
+        location: SourceLocation::default(),
+        message,
+    }
+}
+
+/// A block's motion, mass properties and initial velocity.
+fn block_motion(spec: &BlockSpec) -> Result<(RigidMotion, RigidMass, RigidVelocity), SceneError> {
+    let shape = spec
+        .shape
+        .build()
+        .map_err(|e| invalid(format!("block '{}': {e}", spec.name)))?;
+    let mass_of = |density: Real| {
+        let props = spec.shape.mass_properties(&shape, density);
+        RigidMass {
+            mass: props.mass(),
+            inertia: props.principal_inertia(),
+            local_center: props.local_com,
+        }
+    };
+    // Fixed and kinematic blocks need only their centre of mass (the
+    // point a kinematic spin turns about): any density will do.
+    Ok(match &spec.motion {
+        MotionSpec::Fixed => (RigidMotion::Fixed, mass_of(1.0), RigidVelocity::default()),
+        MotionSpec::Kinematic(v) => (RigidMotion::Kinematic, mass_of(1.0), *v),
+        MotionSpec::Dynamic { density, velocity } => {
+            (RigidMotion::Dynamic, mass_of(*density), *velocity)
+        }
+        MotionSpec::DynamicWithMass {
+            mass,
+            inertia,
+            center,
+            velocity,
+        } => (
+            RigidMotion::Dynamic,
+            RigidMass {
+                mass: *mass,
+                inertia: *inertia,
+                local_center: *center,
+            },
+            *velocity,
+        ),
+    })
 }
 
 /// A warning with the deepest overlap of the body's disks into the block,

@@ -314,6 +314,75 @@ impl Scene {
                     .map_err(|e| invalid(&["output", field], format!("output.{field}: {e}")))?;
             }
         }
+
+        let mut stage_names = BTreeSet::new();
+        for stage in &self.stages {
+            let at = quoted(&stage.name);
+            let fail = |field: &str, message: String| {
+                invalid(
+                    &["stages", &at, field],
+                    format!("stage '{}': {message}", stage.name),
+                )
+            };
+            if !stage_names.insert(stage.name.as_str()) {
+                return Err(fail("name", "the name is used twice".into()));
+            }
+            if let Some(g) = stage.gravity
+                && !g.is_finite()
+            {
+                return Err(fail("gravity", format!("gravity must be finite, got {g}")));
+            }
+            let block = |name: &str, field: &str| {
+                self.blocks.iter().find(|b| b.name == name).ok_or_else(|| {
+                    fail(
+                        field,
+                        format!("unknown block '{name}'; expected one of {block_names:?}"),
+                    )
+                })
+            };
+            for name in &stage.remove_blocks {
+                block(name, "remove_blocks")?;
+            }
+            for name in &stage.add_blocks {
+                if block(name, "add_blocks")?.present {
+                    return Err(fail(
+                        "add_blocks",
+                        format!(
+                            "block '{name}' is present from the start; give it `present: false` to add it in a stage"
+                        ),
+                    ));
+                }
+            }
+            for change in &stage.block_velocities {
+                let b = block(&change.block, "block_velocities")?;
+                if !matches!(b.motion, MotionSpec::Kinematic(_)) {
+                    return Err(fail(
+                        "block_velocities",
+                        format!(
+                            "block '{}' is not Kinematic: only a kinematic block's velocity can be set",
+                            change.block
+                        ),
+                    ));
+                }
+                if !(change.velocity.linear.is_finite() && change.velocity.angular.is_finite()) {
+                    return Err(fail("block_velocities", "velocity must be finite".into()));
+                }
+            }
+            for traction in &stage.tractions {
+                if !body_names.contains(traction.body.as_str()) {
+                    return Err(fail(
+                        "tractions",
+                        format!(
+                            "unknown body '{}'; expected one of {body_names:?}",
+                            traction.body
+                        ),
+                    ));
+                }
+                if !traction.traction.is_finite() {
+                    return Err(fail("tractions", "traction must be finite".into()));
+                }
+            }
+        }
         Ok(())
     }
 }

@@ -1,0 +1,88 @@
+//! The stage plan of a run and the record of its stage transitions.
+
+use crate::math::{DVec2, Real, SymTensor};
+use crate::scene::{Scene, Side};
+use bevy_ecs::prelude::{Entity, Resource};
+
+/// The scene's stages and where the run is in them.
+#[derive(Resource, Clone, Debug)]
+pub struct StagePlan {
+    /// The scene the stages come from (blocks a stage adds are spawned
+    /// from it).
+    pub scene: Scene,
+    /// Index of the current stage in `scene.stages`.
+    pub current: usize,
+    /// Simulated time at which the current stage began (s).
+    pub started: Real,
+    /// Largest kinetic energy of the current stage so far (J/m).
+    pub peak_kinetic: Real,
+    /// Stresses of every body (scene order) after the previous step, kept
+    /// only while a stage ends on the stress change.
+    pub previous_stress: Vec<Vec<SymTensor>>,
+    /// Surface loads in force, per body and side.
+    pub loads: Vec<AppliedLoad>,
+    /// Whether the last stage has ended.
+    pub finished: bool,
+}
+
+/// The point forces a surface traction put into `external_force`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AppliedLoad {
+    /// The body.
+    pub body: Entity,
+    /// The loaded side.
+    pub side: Side,
+    /// (point index, force in N/m) of every loaded point.
+    pub forces: Vec<(u32, DVec2)>,
+}
+
+/// Why a stage ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StageEndReason {
+    /// Its duration elapsed.
+    Duration,
+    /// Its settling condition was met.
+    Condition,
+    /// Its `max_time` elapsed before the condition was met.
+    MaxTime,
+    /// The scene's `time.end` came first.
+    SceneEnd,
+}
+
+impl StageEndReason {
+    /// The word written to `stages.csv`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Duration => "duration",
+            Self::Condition => "condition",
+            Self::MaxTime => "max_time",
+            Self::SceneEnd => "scene_end",
+        }
+    }
+}
+
+/// One finished stage.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StageRecord {
+    /// Index in the scene's stages.
+    pub index: usize,
+    /// Name.
+    pub name: String,
+    /// Start time (s).
+    pub start: Real,
+    /// End time (s).
+    pub end: Real,
+    /// Steps taken in the stage.
+    pub steps: u64,
+    /// Why it ended.
+    pub reason: StageEndReason,
+}
+
+/// The stages run so far and the warnings they raised.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct StageLog {
+    /// Finished stages, in order.
+    pub records: Vec<StageRecord>,
+    /// Warnings for the user (a stage that hit its `max_time`).
+    pub warnings: Vec<String>,
+}

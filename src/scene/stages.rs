@@ -1,0 +1,145 @@
+//! Stages of a scene: a sequence of loading steps (geostatic settling,
+//! surcharge, driving a pile...) that each change the setup on entry and
+//! end after a duration or when the model has settled.
+
+use super::rules;
+use crate::components::RigidVelocity;
+use crate::math::{DVec2, Real};
+use crate::resources::EdgeConditions;
+use serde::{Deserialize, Serialize};
+
+/// One stage. Every change is optional: what a stage does not set stays as
+/// the previous stage (or the scene) left it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StageSpec {
+    /// Name, used in `stages.csv` and messages.
+    pub name: String,
+    /// When the stage ends.
+    pub end: StageEnd,
+    /// PIC fraction β from this stage on.
+    #[serde(default, deserialize_with = "de_optional_fraction")]
+    pub pic_fraction: Option<Real>,
+    /// Grid damping α_g from this stage on.
+    #[serde(default, deserialize_with = "de_optional_damping")]
+    pub grid_damping: Option<Real>,
+    /// Particle damping α_p from this stage on.
+    #[serde(default, deserialize_with = "de_optional_damping")]
+    pub particle_damping: Option<Real>,
+    /// Gravity from this stage on (m/s²).
+    #[serde(default)]
+    pub gravity: Option<DVec2>,
+    /// Grid edge conditions from this stage on (all four edges; e.g. a
+    /// wall removed by setting its edge `Free`).
+    #[serde(default)]
+    pub edges: Option<EdgeConditions>,
+    /// Blocks (by name) that leave the scene on entry.
+    #[serde(default)]
+    pub remove_blocks: Vec<String>,
+    /// Blocks (by name, declared in `blocks` with `present: false`) that
+    /// enter the scene on entry.
+    #[serde(default)]
+    pub add_blocks: Vec<String>,
+    /// Velocities given to kinematic blocks on entry.
+    #[serde(default)]
+    pub block_velocities: Vec<BlockVelocity>,
+    /// Surface tractions set on entry; each replaces any earlier traction on
+    /// the same body and side.
+    #[serde(default)]
+    pub tractions: Vec<SurfaceTraction>,
+}
+
+/// When a stage ends.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum StageEnd {
+    /// After this long (s).
+    Duration(#[serde(deserialize_with = "rules::de_positive")] Real),
+    /// When the bodies' kinetic energy has fallen to `ratio` of the largest
+    /// it reached during the stage, or after `max_time` (s) with a warning.
+    KineticEnergyRatio {
+        /// Threshold ratio in (0, 1].
+        #[serde(deserialize_with = "rules::de_positive")]
+        ratio: Real,
+        /// Longest the stage may last (s).
+        #[serde(deserialize_with = "rules::de_positive")]
+        max_time: Real,
+    },
+    /// When no stress component of any point changed by more than `below`
+    /// (Pa) in the last step, or after `max_time` (s) with a warning.
+    StressChange {
+        /// Threshold (Pa).
+        #[serde(deserialize_with = "rules::de_positive")]
+        below: Real,
+        /// Longest the stage may last (s).
+        #[serde(deserialize_with = "rules::de_positive")]
+        max_time: Real,
+    },
+}
+
+impl StageEnd {
+    /// The longest the stage can last (s).
+    pub fn max_time(&self) -> Real {
+        match *self {
+            Self::Duration(d) => d,
+            Self::KineticEnergyRatio { max_time, .. } | Self::StressChange { max_time, .. } => {
+                max_time
+            }
+        }
+    }
+}
+
+/// A kinematic block's new velocity.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BlockVelocity {
+    /// The block's name.
+    pub block: String,
+    /// Its velocity from this stage on.
+    pub velocity: RigidVelocity,
+}
+
+/// A uniform traction on one side of a body's surface, carried by the
+/// body's outermost points on that side.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SurfaceTraction {
+    /// The body's name.
+    pub body: String,
+    /// Which side of the body.
+    pub side: Side,
+    /// Traction (Pa = N/m² per metre of thickness), e.g. (0, −150e3) for a
+    /// 150 kPa surcharge pressing down on a top surface.
+    pub traction: DVec2,
+}
+
+/// A side of a body: the points that are outermost in that direction
+/// (per column of points for `Top`/`Bottom`, per row for `Left`/`Right`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+pub enum Side {
+    /// The highest point of each column.
+    Top,
+    /// The lowest point of each column.
+    Bottom,
+    /// The leftmost point of each row.
+    Left,
+    /// The rightmost point of each row.
+    Right,
+}
+
+fn de_optional_fraction<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<Real>, D::Error> {
+    optional(d, rules::fraction)
+}
+
+fn de_optional_damping<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<Real>, D::Error> {
+    optional(d, rules::damping)
+}
+
+fn optional<'de, D: serde::Deserializer<'de>>(
+    d: D,
+    rule: fn(Real) -> Result<Real, String>,
+) -> Result<Option<Real>, D::Error> {
+    Option::<Real>::deserialize(d)?
+        .map(rule)
+        .transpose()
+        .map_err(serde::de::Error::custom)
+}

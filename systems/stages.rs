@@ -1,0 +1,274 @@
+//! The scene's stages: entering one (its changes to the setup) and ending
+//! it (after its duration, or once the model has settled).
+
+use crate::components::{
+    BlockId, BodyIndex, BodyName, MaterialPoints, RigidVelocity, sort_into_scene_order,
+};
+use crate::math::{DVec2, Real};
+use crate::resources::{
+    AppliedLoad, Clock, Gravity, Grid, Settings, StageEndReason, StageLog, StagePlan, StageRecord,
+};
+use crate::scene::{Side, StageEnd, spawn_block};
+use bevy_ecs::prelude::*;
+use std::collections::BTreeMap;
+
+/// After each step: ends the current stage when its duration has elapsed,
+/// its settling condition holds (kinetic energy down to `ratio` of the
+/// stage's peak, or no stress component changed by `below` in the step) or
+/// its `max_time` has passed (a warning), then enters the next stage; after
+/// the last one the run ends (the clock's end is set to now). Reaching the
+/// scene's `time.end` first ends the stage with a warning. Does nothing in a
+/// scene without stages.
+///
+/// Reads and writes the whole world (exclusive): `StagePlan`, `StageLog`,
+/// `Clock`, and on entry what the stage changes.
+pub fn advance_stages(world: &mut World) {
+    let Some(mut plan) = world.remove_resource::<StagePlan>() else {
+        return;
+    };
+    if !plan.finished {
+        let reason = stage_end(world, &mut plan);
+        if let Some(reason) = reason {
+            finish_stage(world, &mut plan, reason);
+        }
+    }
+    world.insert_resource(plan);
+}
+
+/// Why the current stage ends after this step, if it does.
+fn stage_end(world: &mut World, plan: &mut StagePlan) -> Option<StageEndReason> {
+    let clock = *world.resource::<Clock>();
+    let elapsed = clock.time - plan.started;
+    let elapsed_enough = |t: Real| elapsed >= t - 0.5 * clock.dt;
+    let bodies = bodies_in_order(world);
+    let end = plan.scene.stages[plan.current].end.clone();
+    let settled = match end {
+        StageEnd::Duration(d) => {
+            if elapsed_enough(d) {
+                return Some(StageEndReason::Duration);
+            }
+            false
+        }
+        StageEnd::KineticEnergyRatio { ratio, .. } => {
+            let kinetic: Real = bodies
+                .iter()
+                .filter_map(|e| world.get::<MaterialPoints>(*e))
+                .map(|p| {
+                    p.mass
+                        .iter()
+                        .zip(&p.velocity)
+                        .map(|(m, v)| 0.5 * m * v.length_squared())
+                        .sum::<Real>()
+                })
+                .sum();
+            plan.peak_kinetic = plan.peak_kinetic.max(kinetic);
+            kinetic <= ratio * plan.peak_kinetic
+        }
+        StageEnd::StressChange { below, .. } => {
+            let mut largest: Real = 0.0;
+            for (k, e) in bodies.iter().enumerate() {
+                let Some(points) = world.get::<MaterialPoints>(*e) else {
+                    continue;
+                };
+                let previous = &mut plan.previous_stress[k];
+                for (old, new) in previous.iter_mut().zip(&points.stress) {
+                    let (new_c, old_c) = (new.to_array(), old.to_array());
+                    largest = new_c
+                        .iter()
+                        .zip(&old_c)
+                        .fold(largest, |m, (a, b)| m.max((a - b).abs()));
+                    *old = *new;
+                }
+            }
+            largest <= below
+        }
+    };
+    if settled {
+        Some(StageEndReason::Condition)
+    } else if elapsed_enough(end.max_time()) {
+        Some(StageEndReason::MaxTime)
+    } else if clock.finished() {
+        Some(StageEndReason::SceneEnd)
+    } else {
+        None
+    }
+}
+
+/// Records the end of the current stage and enters the next, or ends the run.
+fn finish_stage(world: &mut World, plan: &mut StagePlan, reason: StageEndReason) {
+    let clock = *world.resource::<Clock>();
+    let stage = &plan.scene.stages[plan.current];
+    let mut log = world.resource_mut::<StageLog>();
+    log.records.push(StageRecord {
+        index: plan.current,
+        name: stage.name.clone(),
+        start: plan.started,
+        end: clock.time,
+        steps: ((clock.time - plan.started) / clock.dt).round() as u64,
+        reason,
+    });
+    match reason {
+        StageEndReason::MaxTime => log.warnings.push(format!(
+            "stage '{}' reached its max_time of {} s at t = {} s without meeting its end condition",
+            stage.name,
+            stage.end.max_time(),
+            clock.time
+        )),
+        StageEndReason::SceneEnd => log.warnings.push(format!(
+            "time.end = {} s came during stage '{}'; later stages were not run",
+            clock.end, stage.name
+        )),
+        StageEndReason::Duration | StageEndReason::Condition => {}
+    }
+    let next = plan.current + 1;
+    if reason != StageEndReason::SceneEnd && next < plan.scene.stages.len() {
+        let warnings = enter_stage(world, plan, next);
+        world.resource_mut::<StageLog>().warnings.extend(warnings);
+    } else {
+        plan.finished = true;
+        world.resource_mut::<Clock>().end = clock.time;
+    }
+}
+
+/// Enters stage `index`: applies its changes to the world and starts its
+/// clock. Returns warnings (e.g. an added block overlapping a body).
+pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec<String> {
+    let mut warnings = Vec::new();
+    let spec = plan.scene.stages[index].clone();
+    {
+        let mut settings = world.resource_mut::<Settings>();
+        if let Some(beta) = spec.pic_fraction {
+            settings.pic_fraction = beta;
+        }
+        if let Some(alpha) = spec.grid_damping {
+            settings.grid_damping = alpha;
+        }
+        if let Some(alpha) = spec.particle_damping {
+            settings.particle_damping = alpha;
+        }
+    }
+    if let Some(g) = spec.gravity {
+        world.resource_mut::<Gravity>().0 = g;
+    }
+    if let Some(edges) = spec.edges {
+        world.resource_mut::<Grid>().edges = edges;
+    }
+    for name in &spec.remove_blocks {
+        if let Some(entity) = block_named(world, name) {
+            world.despawn(entity);
+        }
+    }
+    let bodies = bodies_in_order(world);
+    for name in &spec.add_blocks {
+        if let Some(k) = plan.scene.blocks.iter().position(|b| &b.name == name) {
+            match spawn_block(&plan.scene, k, world, &bodies) {
+                Ok(w) => warnings.extend(w),
+                Err(e) => warnings.push(format!("stage '{}': {e}", spec.name)),
+            }
+        }
+    }
+    for change in &spec.block_velocities {
+        if let Some(entity) = block_named(world, &change.block)
+            && let Some(mut velocity) = world.get_mut::<RigidVelocity>(entity)
+        {
+            *velocity = change.velocity;
+        }
+    }
+    let origin = world.resource::<Grid>().origin;
+    for traction in &spec.tractions {
+        let Some(body) = bodies.iter().copied().find(|e| {
+            world
+                .get::<BodyName>(*e)
+                .is_some_and(|n| n.0 == traction.body)
+        }) else {
+            continue;
+        };
+        let Some(mut points) = world.get_mut::<MaterialPoints>(body) else {
+            continue;
+        };
+        if let Some(k) = plan
+            .loads
+            .iter()
+            .position(|l| l.body == body && l.side == traction.side)
+        {
+            for (p, f) in plan.loads.remove(k).forces {
+                points.external_force[p as usize] -= f;
+            }
+        }
+        let forces: Vec<(u32, DVec2)> = side_points(&points, origin, traction.side)
+            .into_iter()
+            .map(|(p, width)| (p, traction.traction * width))
+            .collect();
+        for &(p, f) in &forces {
+            points.external_force[p as usize] += f;
+        }
+        plan.loads.push(AppliedLoad {
+            body,
+            side: traction.side,
+            forces,
+        });
+    }
+    let time = world.resource::<Clock>().time;
+    plan.current = index;
+    plan.started = time;
+    plan.peak_kinetic = 0.0;
+    plan.previous_stress = match spec.end {
+        StageEnd::StressChange { .. } => bodies
+            .iter()
+            .map(|e| {
+                world
+                    .get::<MaterialPoints>(*e)
+                    .map_or_else(Vec::new, |p| p.stress.clone())
+            })
+            .collect(),
+        _ => Vec::new(),
+    };
+    warnings
+}
+
+/// The outermost points of a body on `side`, with the width of surface
+/// each carries: the highest (lowest) point of every column of the
+/// initial point lattice for `Top` (`Bottom`), the rightmost (leftmost) of
+/// every row for `Right` (`Left`), columns and rows in order.
+pub fn side_points(points: &MaterialPoints, origin: DVec2, side: Side) -> Vec<(u32, Real)> {
+    let mut outermost: BTreeMap<i64, (u32, Real, Real)> = BTreeMap::new();
+    for (p, (x, half)) in points
+        .initial_position
+        .iter()
+        .zip(&points.half_size)
+        .enumerate()
+    {
+        let (along, across, width) = match side {
+            Side::Top | Side::Bottom => (x.x - origin.x, x.y, 2.0 * half.x),
+            Side::Left | Side::Right => (x.y - origin.y, x.x, 2.0 * half.y),
+        };
+        let key = (along / width).floor() as i64;
+        let outward = match side {
+            Side::Top | Side::Right => across,
+            Side::Bottom | Side::Left => -across,
+        };
+        let entry = outermost.entry(key).or_insert((p as u32, outward, width));
+        if outward > entry.1 {
+            *entry = (p as u32, outward, width);
+        }
+    }
+    outermost
+        .into_values()
+        .map(|(p, _, width)| (p, width))
+        .collect()
+}
+
+fn bodies_in_order(world: &mut World) -> Vec<Entity> {
+    let mut order = Vec::new();
+    let mut query = world.query::<(Entity, &BodyIndex)>();
+    sort_into_scene_order(&mut order, query.iter(world).map(|(e, i)| (*i, e)));
+    order.into_iter().map(|(_, e)| e).collect()
+}
+
+fn block_named(world: &mut World, name: &str) -> Option<Entity> {
+    let mut query = world.query::<(Entity, &BlockId)>();
+    query
+        .iter(world)
+        .find(|(_, id)| id.name == name)
+        .map(|(e, _)| e)
+}
