@@ -126,7 +126,7 @@ fn run(path: &Path, out: Option<&Path>, quiet: bool) -> Result<(), String> {
     let dir = out.map_or_else(|| Path::new("out").join(sim.name()), Path::to_path_buf);
     let clock = sim.clock();
     let frame_interval = scene.output.frame_interval_or_default(clock.end);
-    let mut output = RunOutput::create(&dir, frame_interval, &mut sim)
+    let mut output = RunOutput::create(&dir, frame_interval, &scene.output.curves, &mut sim)
         .map_err(|e| format!("{}: cannot write output: {e}", dir.display()))?;
     let total = clock.total_steps();
     let progress = progress_bar(total, quiet);

@@ -2,11 +2,11 @@
 //! (paper section 3.2.2).
 
 use crate::components::{
-    BlockContactLaw, BlockContacts, BlockId, MaterialPoints, NeighbourList, PointContact, Pose,
-    Reaction, RigidMass, RigidShape, RigidVelocity,
+    BlockContactLaw, BlockContacts, BlockId, MaterialPoints, NeighbourList, PartReactions,
+    PointContact, Pose, Reaction, RigidMass, RigidShape, RigidVelocity,
 };
 use crate::contact::{disk_shape_contact, overlap_area, pair_force};
-use crate::math::DVec2;
+use crate::math::{DVec2, Real};
 use crate::resources::{Clock, ContactSettings, Penetration};
 use crate::rigid::velocity_at;
 use bevy_ecs::prelude::*;
@@ -27,6 +27,7 @@ type BlockData = (
     &'static NeighbourList,
     &'static mut BlockContacts,
     &'static mut Reaction,
+    &'static mut PartReactions,
 );
 
 /// For every block (in scene order) and every listed point (in list order):
@@ -66,8 +67,10 @@ pub fn compute_rigid_contacts(
     order.extend(blocks.iter().map(|(e, b)| (b.0.index, e)));
     order.sort_unstable();
     for (_, entity) in order.iter() {
-        let Ok((_, (_, shape, pose, velocity, mass, law, list, mut contacts, mut reaction))) =
-            blocks.get_mut(*entity)
+        let Ok((
+            _,
+            (_, shape, pose, velocity, mass, law, list, mut contacts, mut reaction, mut parts),
+        )) = blocks.get_mut(*entity)
         else {
             continue;
         };
@@ -110,15 +113,36 @@ pub fn compute_rigid_contacts(
             .collect_into_vec(&mut found);
         // Forces and reactions summed sequentially, in list order.
         *reaction = Reaction::default();
+        parts.0.iter_mut().for_each(|f| *f = DVec2::ZERO);
         let center = mass.center(pose);
+        let compound = shape.0.as_compound();
         for contact in found.iter().flatten() {
             if let Ok(mut points) = bodies.get_mut(contact.body) {
                 points.contact_force[contact.point as usize] += contact.force;
             }
             reaction.force -= contact.force;
             reaction.torque -= (contact.at - center).perp_dot(contact.force);
+            let part = compound.map_or(0, |c| nearest_part(c, &parry_pose, contact.at));
+            parts.0[part] -= contact.force;
             contacts.current.push(*contact);
         }
         contacts.current.sort_unstable_by_key(|c| (c.body, c.point));
     }
+}
+
+/// Index of the part of `compound` (placed at `pose`) nearest `point`; the
+/// first of equally near parts.
+fn nearest_part(
+    compound: &parry2d_f64::shape::Compound,
+    pose: &parry2d_f64::math::Pose,
+    point: DVec2,
+) -> usize {
+    let mut best = (0, Real::INFINITY);
+    for (k, (local, part)) in compound.shapes().iter().enumerate() {
+        let distance = part.distance_to_point(&(*pose * *local), point, true);
+        if distance < best.1 {
+            best = (k, distance);
+        }
+    }
+    best.0
 }

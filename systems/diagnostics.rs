@@ -1,12 +1,13 @@
 //! End of the step: finiteness check, clock, probes and energies.
 
 use crate::components::{
-    BlockId, BodyIndex, BodyName, Material, MaterialPoints, Pose, Reaction, RigidVelocity,
-    sort_into_scene_order,
+    BlockId, BodyIndex, BodyName, Material, MaterialPoints, PartReactions, Pose, Reaction,
+    RigidVelocity, sort_into_scene_order,
 };
 use crate::math::Real;
 use crate::resources::{
-    BlockLog, BlockSample, Clock, Diagnostics, EnergyLog, EnergySample, NumericalFailure, Probes,
+    BlockLog, BlockPartSample, BlockSample, Clock, Diagnostics, EnergyLog, EnergySample,
+    NumericalFailure, Probes,
 };
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -128,7 +129,14 @@ pub fn record_blocks(
     probes: Res<Probes>,
     mut log: ResMut<BlockLog>,
     mut order: Local<Vec<(u32, Entity)>>,
-    blocks: Query<(Entity, &BlockId, &Reaction, &Pose, &RigidVelocity)>,
+    blocks: Query<(
+        Entity,
+        &BlockId,
+        &Reaction,
+        &PartReactions,
+        &Pose,
+        &RigidVelocity,
+    )>,
 ) {
     if blocks.is_empty()
         || diagnostics.failure.is_some()
@@ -140,7 +148,7 @@ pub fn record_blocks(
     order.extend(blocks.iter().map(|(e, id, ..)| (id.index, e)));
     order.sort_unstable();
     for (_, entity) in order.iter() {
-        let Ok((_, id, reaction, pose, velocity)) = blocks.get(*entity) else {
+        let Ok((_, id, reaction, parts, pose, velocity)) = blocks.get(*entity) else {
             continue;
         };
         log.samples.push(BlockSample {
@@ -153,5 +161,15 @@ pub fn record_blocks(
             velocity: velocity.linear,
             angular: velocity.angular,
         });
+        if parts.0.len() > 1 {
+            for (k, force) in parts.0.iter().enumerate() {
+                log.parts.push(BlockPartSample {
+                    block: id.index,
+                    part: k as u32,
+                    time: clock.time,
+                    force: *force,
+                });
+            }
+        }
     }
 }

@@ -22,6 +22,11 @@ use rayon::prelude::*;
 /// * eq. 12a: V^{n+1} = Σ S_ip v*_i + a_p Δt;
 /// * eq. 12b: x^{n+1} = x^n + v^n Δt + ½ (V^{n+1} − V^n) Δt.
 ///
+/// A point the update would carry through a fixed or slip wall (the grid
+/// velocity there has no normal component, but the PIC/FLIP terms of V_p can
+/// still move it) is put back on the wall, and its velocity's component
+/// into the wall removed.
+///
 /// Reads: `Grid`, `Settings`, `Clock`, `GridLayer`, `TransferScratch::stencils`.
 /// Writes: `MaterialPoints` (position, velocity), `TransferScratch::xpic`,
 /// `StepTravel` (the largest |x^{n+1} − x^n|, a maximum, so exact for any
@@ -38,6 +43,7 @@ pub fn grid_to_particle(
     )>,
 ) {
     let row_len = grid.nodes()[0];
+    let (lo, hi) = grid.wall_bounds();
     let (dt, beta, alpha) = (clock.dt, settings.pic_fraction, settings.particle_damping);
     for (mut points, mut travel, layer, mut scratch) in &mut bodies {
         let TransferScratch { stencils, xpic, .. } = &mut *scratch;
@@ -82,8 +88,15 @@ pub fn grid_to_particle(
                     *v = (1.0 - beta) * (*v + change) + beta * pic;
                     step
                 };
-                *x += step;
-                step.length()
+                let before = *x;
+                *x = (*x + step).clamp(lo, hi);
+                if x.x != before.x + step.x {
+                    v.x = 0.0;
+                }
+                if x.y != before.y + step.y {
+                    v.y = 0.0;
+                }
+                (*x - before).length()
             })
             .reduce(|| 0.0, Real::max);
     }

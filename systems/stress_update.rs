@@ -33,7 +33,10 @@ pub fn update_stress(
             };
             match &material.model {
                 MaterialModel::LinearElastic(m) => step.apply(m, &mut points, &scratch.stencils),
+                MaterialModel::NeoHookean(m) => step.apply(m, &mut points, &scratch.stencils),
+                MaterialModel::MohrCoulomb(m) => step.apply(m, &mut points, &scratch.stencils),
                 MaterialModel::DruckerPrager(m) => step.apply(m, &mut points, &scratch.stencils),
+                MaterialModel::NewtonianFluid(m) => step.apply(m, &mut points, &scratch.stencils),
             }
         }
     }

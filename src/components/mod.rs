@@ -14,7 +14,7 @@ pub use body::{
 pub use grid_layer::{Fix, GridLayer, GridNode, NodeConstraint};
 pub use material_points::{MaterialPoints, NewPoint, StepTravel};
 pub use rigid::{
-    BlockContactLaw, BlockContacts, BlockId, BlockOutline, NeighbourList, PointContact, Pose,
-    Reaction, RigidMass, RigidMotion, RigidShape, RigidVelocity,
+    BlockContactLaw, BlockContacts, BlockId, BlockOutline, NeighbourList, PartReactions,
+    PointContact, Pose, Reaction, RigidMass, RigidMotion, RigidShape, RigidVelocity,
 };
 pub use transfer_scratch::{MassMomentumForce, TransferScratch, XpicScratch};

@@ -139,6 +139,12 @@ pub struct BlockContacts {
     pub previous: Vec<PointContact>,
 }
 
+/// Force the points exert on each part of the block this step (one entry
+/// for a single shape; for a compound, each contact goes to the part its
+/// contact point is nearest), e.g. a pile's cone tip apart from its shaft.
+#[derive(Component, Clone, Debug, Default, PartialEq)]
+pub struct PartReactions(pub Vec<DVec2>);
+
 /// Force and torque (about the centre of mass) the points exert on the block
 /// this step, summed in contact order.
 #[derive(Component, Clone, Copy, Debug, Default, PartialEq)]

@@ -1,5 +1,6 @@
 //! CSV time series: probes and energies.
 
+use crate::math::Real;
 use crate::resources::{BlockLog, EnergyLog, Probes, StageLog};
 use std::io::Write;
 use std::path::Path;
@@ -43,6 +44,16 @@ pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
             s.strain,
             s.kinetic + s.strain
         )?;
+    }
+    out.flush()
+}
+
+/// Writes a reaction–displacement curve: `time,displacement,resistance`.
+pub fn write_curve(path: &Path, rows: &[(Real, Real, Real)]) -> std::io::Result<()> {
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(out, "time,displacement,resistance")?;
+    for (t, d, f) in rows {
+        writeln!(out, "{t:e},{d:e},{f:e}")?;
     }
     out.flush()
 }

@@ -7,6 +7,7 @@ use super::vtk::{PointFrame, write_collection, write_outlines, write_point_frame
 use crate::components::{BlockId, BlockOutline, BodyIndex, MaterialPoints, Pose};
 use crate::math::{DVec2, Real};
 use crate::resources::{BlockLog, EnergyLog, Grid, Probes, StageLog};
+use crate::scene::CurveSpec;
 use crate::simulation::Simulation;
 use std::path::{Path, PathBuf};
 
@@ -22,6 +23,8 @@ pub struct RunOutput {
     frames: Vec<(Real, String)>,
     block_frames: Vec<(Real, String)>,
     buffers: FrameBuffers,
+    /// Reaction–displacement curves to write at the end.
+    curves: Vec<CurveSpec>,
 }
 
 /// Concatenated columns of all bodies, reused from frame to frame.
@@ -37,10 +40,20 @@ struct FrameBuffers {
     outlines: Vec<Vec<DVec2>>,
 }
 
+/// One sample of a reaction–displacement curve: time, scaled displacement,
+/// scaled resistance.
+type CurveSample = (Real, Real, Real);
+
 impl RunOutput {
     /// Creates the folder (and `vtk/` inside it) and writes frame 0.
-    /// `frame_interval` is the simulated time between frames (s).
-    pub fn create(dir: &Path, frame_interval: Real, sim: &mut Simulation) -> std::io::Result<Self> {
+    /// `frame_interval` is the simulated time between frames (s); `curves`
+    /// are written at the end.
+    pub fn create(
+        dir: &Path,
+        frame_interval: Real,
+        curves: &[CurveSpec],
+        sim: &mut Simulation,
+    ) -> std::io::Result<Self> {
         std::fs::create_dir_all(dir.join("vtk"))?;
         let frame_every = ((frame_interval / sim.clock().dt).round() as u64).max(1);
         let mut output = Self {
@@ -49,6 +62,7 @@ impl RunOutput {
             frames: Vec::new(),
             block_frames: Vec::new(),
             buffers: FrameBuffers::default(),
+            curves: curves.to_vec(),
         };
         output.write_frame(sim)?;
         Ok(output)
@@ -92,9 +106,63 @@ impl RunOutput {
         if !stages.records.is_empty() {
             csv::write_stages(&self.dir.join("stages.csv"), stages)?;
         }
+        for curve in &self.curves {
+            self.write_curve(curve, blocks)?;
+        }
         self.plot_energy(energy)?;
         self.plot_probes(probes)?;
         self.plot_snapshot(sim.name(), world.resource::<Grid>())
+    }
+
+    /// Writes `<name>.csv` (`time,displacement,resistance`, scaled) and
+    /// `<name>.png` for one curve.
+    fn write_curve(&self, curve: &CurveSpec, log: &BlockLog) -> std::io::Result<()> {
+        let Some(block) = log.names.iter().position(|n| *n == curve.block) else {
+            return Ok(());
+        };
+        let d = curve.direction.normalize_or_zero();
+        let samples: Vec<_> = log
+            .samples
+            .iter()
+            .filter(|s| s.block as usize == block)
+            .collect();
+        let Some(first) = samples.first() else {
+            return Ok(());
+        };
+        let force_at = |time: Real, whole: DVec2| match curve.part {
+            None => whole,
+            Some(k) => log
+                .parts
+                .iter()
+                .find(|p| p.block as usize == block && p.part as usize == k && p.time == time)
+                .map_or(DVec2::ZERO, |p| p.force),
+        };
+        let rows: Vec<CurveSample> = samples
+            .iter()
+            .map(|s| {
+                (
+                    s.time,
+                    (s.origin - first.origin).dot(d) * curve.displacement_scale,
+                    -force_at(s.time, s.force).dot(d) * curve.force_scale,
+                )
+            })
+            .collect();
+        csv::write_curve(&self.dir.join(format!("{}.csv", curve.name)), &rows)?;
+        let points: Vec<(Real, Real)> = rows.iter().map(|r| (r.1, r.2)).collect();
+        plot_series(
+            &self.dir.join(format!("{}.png", curve.name)),
+            &curve.name,
+            curve
+                .displacement_label
+                .as_deref()
+                .unwrap_or("displacement (m)"),
+            curve.force_label.as_deref().unwrap_or("force (N/m)"),
+            &[Series {
+                name: "",
+                points: &points,
+                style: SeriesStyle::Line,
+            }],
+        )
     }
 
     fn write_frame(&mut self, sim: &mut Simulation) -> std::io::Result<()> {

@@ -6,10 +6,16 @@
 //! a model through [`MaterialModel`].
 
 mod elasticity_linear;
+mod elasticity_neo_hookean;
+mod fluid_newtonian;
 mod plasticity_drucker_prager;
+mod plasticity_mohr_coulomb;
 
 pub use elasticity_linear::LinearElastic;
+pub use elasticity_neo_hookean::NeoHookean;
+pub use fluid_newtonian::NewtonianFluid;
 pub use plasticity_drucker_prager::DruckerPrager;
+pub use plasticity_mohr_coulomb::MohrCoulomb;
 
 use crate::math::{DMat2, Real, SymTensor};
 use serde::{Deserialize, Serialize};
@@ -60,8 +66,14 @@ pub trait ConstitutiveModel: Send + Sync {
 pub enum MaterialModel {
     /// Isotropic linear elasticity with a Jaumann stress rate.
     LinearElastic(LinearElastic),
+    /// Compressible neo-Hookean hyperelasticity (σ from F).
+    NeoHookean(NeoHookean),
+    /// Mohr–Coulomb plasticity with a Rankine tension cut-off (eqs. 13–14).
+    MohrCoulomb(MohrCoulomb),
     /// Drucker–Prager plasticity with a tension cut-off (eqs. 15–17).
     DruckerPrager(DruckerPrager),
+    /// Weakly compressible Newtonian fluid (eq. 22).
+    NewtonianFluid(NewtonianFluid),
 }
 
 impl MaterialModel {
@@ -69,7 +81,10 @@ impl MaterialModel {
     pub fn check(&self) -> Result<(), String> {
         match self {
             Self::LinearElastic(m) => m.check(),
+            Self::NeoHookean(m) => m.check(),
+            Self::MohrCoulomb(m) => m.check(),
             Self::DruckerPrager(m) => m.check(),
+            Self::NewtonianFluid(m) => m.check(),
         }
     }
 
@@ -77,7 +92,10 @@ impl MaterialModel {
     pub fn as_model(&self) -> &dyn ConstitutiveModel {
         match self {
             Self::LinearElastic(m) => m,
+            Self::NeoHookean(m) => m,
+            Self::MohrCoulomb(m) => m,
             Self::DruckerPrager(m) => m,
+            Self::NewtonianFluid(m) => m,
         }
     }
 }
@@ -90,6 +108,19 @@ pub fn jaumann_rotation(stress: &SymTensor, w: Real, dt: Real) -> SymTensor {
         -2.0 * w * stress.xy * dt,
         w * (stress.yy - stress.xx) * dt,
         0.0,
+    )
+}
+
+/// `stress` turned counter-clockwise by `angle` in the plane: R σ Rᵀ.
+#[cfg(test)]
+pub(crate) fn rotated(stress: &SymTensor, angle: Real) -> SymTensor {
+    let (s, c) = angle.sin_cos();
+    let SymTensor { xx, yy, xy, zz } = *stress;
+    SymTensor::new(
+        c * c * xx + s * s * yy - 2.0 * c * s * xy,
+        s * s * xx + c * c * yy + 2.0 * c * s * xy,
+        c * s * (xx - yy) + (c * c - s * s) * xy,
+        zz,
     )
 }
 
@@ -107,5 +138,80 @@ mod tests {
         let rate = jaumann_rotation(&SymTensor::new(s, 0.0, 0.0, 0.0), -omega, dt);
         assert!((rate.xy - s * omega * dt).abs() < 1e-15);
         assert_eq!(rate.xx, 0.0);
+    }
+
+    #[test]
+    fn scenes_select_the_new_models_by_name_and_bad_values_are_refused() {
+        let parse = |text: &str| ron::from_str::<MaterialModel>(text);
+        let mc = parse(
+            "MohrCoulomb((youngs_modulus: 1.6e7, poisson_ratio: 0.3, friction_angle: 32.0, \
+             dilation_angle: 0.01, cohesion: 0.0, tension_cutoff: 10.0))",
+        )
+        .unwrap();
+        let MaterialModel::MohrCoulomb(m) = &mc else {
+            panic!("{mc:?}")
+        };
+        // Defaults of the flow potential: ε = 0.1, e from φ.
+        assert_eq!(m.meridional_eccentricity, 0.1);
+        assert_eq!(m.deviatoric_eccentricity, None);
+        assert!(mc.check().is_ok());
+        let with_e = parse(
+            "MohrCoulomb((youngs_modulus: 1e7, poisson_ratio: 0.3, friction_angle: 30.0, \
+             meridional_eccentricity: 0.2, deviatoric_eccentricity: Some(0.8)))",
+        )
+        .unwrap();
+        assert!(with_e.check().is_ok());
+
+        let nh = parse("NeoHookean((youngs_modulus: 1e6, poisson_ratio: 0.3))").unwrap();
+        assert!(matches!(nh, MaterialModel::NeoHookean(_)) && nh.check().is_ok());
+
+        let water = parse("NewtonianFluid((bulk_modulus: 3e4, viscosity: 8.9e-4))").unwrap();
+        let MaterialModel::NewtonianFluid(f) = &water else {
+            panic!("{water:?}")
+        };
+        assert_eq!(f.gamma, 7.0);
+        assert!(water.check().is_ok());
+        // The time step sees the equation of state's tangent K γ.
+        assert_eq!(water.as_model().p_wave_modulus(), 3e4 * 7.0);
+
+        // Refused while parsing, with the rule in the message.
+        for (bad, rule) in [
+            (
+                "NewtonianFluid((bulk_modulus: 3e4, viscosity: -1e-3))",
+                "≥ 0",
+            ),
+            (
+                "NewtonianFluid((bulk_modulus: 0.0, viscosity: 1e-3))",
+                "> 0",
+            ),
+            (
+                "NeoHookean((youngs_modulus: 1e6, poisson_ratio: 0.5))",
+                "Poisson",
+            ),
+            (
+                "MohrCoulomb((youngs_modulus: 1e7, poisson_ratio: 0.3, friction_angle: 95.0))",
+                "angle",
+            ),
+            (
+                "MohrCoulomb((youngs_modulus: 1e7, poisson_ratio: 0.3, friction_angle: 30.0, \
+                 deviatoric_eccentricity: Some(0.4)))",
+                "eccentricity",
+            ),
+        ] {
+            let error = parse(bad).expect_err(bad).to_string();
+            assert!(error.contains(rule), "{bad}: {error}");
+        }
+        // A rule across fields is checked by `check` (scene validation).
+        let steep = parse(
+            "MohrCoulomb((youngs_modulus: 1e7, poisson_ratio: 0.3, friction_angle: 30.0, \
+             dilation_angle: 40.0))",
+        )
+        .unwrap();
+        assert!(steep.check().unwrap_err().contains("dilation_angle"));
+        let sticky = MaterialModel::NewtonianFluid(NewtonianFluid {
+            viscosity: -1.0,
+            ..*f
+        });
+        assert!(sticky.check().unwrap_err().contains("viscosity"));
     }
 }

@@ -71,6 +71,26 @@ impl Grid {
         }
     }
 
+    /// The box points may not leave through a wall: per axis, the low and
+    /// high bounds, the grid's edge where it is fixed or slip and unbounded
+    /// where it is free.
+    pub fn wall_bounds(&self) -> (DVec2, DVec2) {
+        let bound = |c: EdgeCondition, at: Real, open: Real| {
+            if c == EdgeCondition::Free { open } else { at }
+        };
+        let (lo, hi) = (self.origin, self.max());
+        (
+            DVec2::new(
+                bound(self.edges.left, lo.x, Real::NEG_INFINITY),
+                bound(self.edges.bottom, lo.y, Real::NEG_INFINITY),
+            ),
+            DVec2::new(
+                bound(self.edges.right, hi.x, Real::INFINITY),
+                bound(self.edges.top, hi.y, Real::INFINITY),
+            ),
+        )
+    }
+
     /// Upper-right corner (m).
     pub fn max(&self) -> DVec2 {
         self.origin + DVec2::new(self.cells[0] as Real, self.cells[1] as Real) * self.cell_size

@@ -13,6 +13,8 @@ pub use clock::Clock;
 pub use contact_settings::{BlockContactHistory, BlockContactKey, ContactSettings, Penetration};
 pub use diagnostics::{Diagnostics, NumericalFailure};
 pub use grid::{EdgeCondition, EdgeConditions, Grid};
-pub use records::{BlockLog, BlockSample, EnergyLog, EnergySample, Probe, ProbeSample, Probes};
+pub use records::{
+    BlockLog, BlockPartSample, BlockSample, EnergyLog, EnergySample, Probe, ProbeSample, Probes,
+};
 pub use settings::{Gravity, Settings, UpdateScheme};
 pub use stages::{AppliedLoad, StageEndReason, StageLog, StagePlan, StageRecord};

@@ -140,4 +140,19 @@ pub struct BlockLog {
     pub names: Vec<String>,
     /// Samples in time order, blocks in scene order within a time.
     pub samples: Vec<BlockSample>,
+    /// Reactions on the parts of compound blocks, sampled with `samples`.
+    pub parts: Vec<BlockPartSample>,
+}
+
+/// The reaction on one part of a compound block at one time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BlockPartSample {
+    /// Index of the block in the scene.
+    pub block: u32,
+    /// Index of the part in the block's compound.
+    pub part: u32,
+    /// Simulated time (s).
+    pub time: Real,
+    /// Force of the points on the part (N/m).
+    pub force: DVec2,
 }

@@ -274,6 +274,43 @@ pub struct OutputSpec {
     /// 1000, a thousand samples, smooth plots at a negligible cost; set it to
     /// `time.dt` to sample every step.
     pub probe_interval: Option<Real>,
+    /// Reaction–displacement curves of blocks (e.g. a pile's cone
+    /// resistance against depth), written as `<name>.csv` and `<name>.png`.
+    pub curves: Vec<CurveSpec>,
+}
+
+/// A block's (or one part's) reaction against the block's displacement,
+/// both measured along `direction`: displacement (x − x₀) · d and
+/// resistance F · (−d), with d the unit `direction`, F the points' force
+/// on the block or part. Sampled with the probes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CurveSpec {
+    /// File stem of the CSV and PNG.
+    pub name: String,
+    /// The block.
+    pub block: String,
+    /// Part of a compound block (its index in `parts`). Default: the whole block.
+    #[serde(default)]
+    pub part: Option<usize>,
+    /// Direction of travel, e.g. (0, −1) for a pile driven down.
+    pub direction: DVec2,
+    /// Factor on the resistance (e.g. 1/R for q_c = f_c / R). Default 1.
+    #[serde(default = "one")]
+    pub force_scale: Real,
+    /// Factor on the displacement (e.g. 1/R for z/R). Default 1.
+    #[serde(default = "one")]
+    pub displacement_scale: Real,
+    /// Axis label of the resistance. Default "force (N/m)".
+    #[serde(default)]
+    pub force_label: Option<String>,
+    /// Axis label of the displacement. Default "displacement (m)".
+    #[serde(default)]
+    pub displacement_label: Option<String>,
+}
+
+fn one() -> Real {
+    1.0
 }
 
 impl OutputSpec {

@@ -128,6 +128,17 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
     world.insert_resource(BlockLog {
         names: scene.blocks.iter().map(|b| b.name.clone()).collect(),
         samples: Vec::with_capacity(samples * scene.blocks.len()),
+        parts: Vec::with_capacity(
+            samples
+                * scene
+                    .blocks
+                    .iter()
+                    .map(|b| match &b.shape {
+                        crate::rigid::BlockShape::Compound { parts } => parts.len(),
+                        _ => 0,
+                    })
+                    .sum::<usize>(),
+        ),
     });
     world.insert_resource(Gravity(scene.gravity));
     world.insert_resource(Diagnostics::default());

@@ -5,11 +5,11 @@
 
 use super::{BlockSpec, MotionSpec, Scene, SceneError, SourceLocation};
 use crate::components::{
-    BlockContactLaw, BlockContacts, BlockId, BlockOutline, MaterialPoints, NeighbourList, Pose,
-    Reaction, RigidMass, RigidMotion, RigidShape, RigidVelocity,
+    BlockContactLaw, BlockContacts, BlockId, BlockOutline, MaterialPoints, NeighbourList,
+    PartReactions, Pose, Reaction, RigidMass, RigidMotion, RigidShape, RigidVelocity,
 };
 use crate::contact::disk_shape_contact;
-use crate::math::Real;
+use crate::math::{DVec2, Real};
 use crate::resources::Penetration;
 use crate::rigid::{MAX_SUBSTEPS, substeps_needed};
 use bevy_ecs::prelude::*;
@@ -65,6 +65,7 @@ pub fn spawn_block(
         angle: spec.angle.to_radians(),
     };
     let (motion, mass, velocity) = block_motion(spec)?;
+    let part_count = shape.as_compound().map_or(1, |c| c.shapes().len());
     for &body in bodies {
         let Some(points) = world.get::<MaterialPoints>(body) else {
             continue;
@@ -105,6 +106,7 @@ pub fn spawn_block(
         NeighbourList::default(),
         BlockContacts::default(),
         Reaction::default(),
+        PartReactions(vec![DVec2::ZERO; part_count]),
     ));
     Ok(warnings)
 }

@@ -315,6 +315,49 @@ impl Scene {
             }
         }
 
+        for curve in &self.output.curves {
+            let at = quoted(&curve.name);
+            let fail = |field: &str, message: String| {
+                invalid(
+                    &["curves", &at, field],
+                    format!("curve '{}': {message}", curve.name),
+                )
+            };
+            let Some(block) = self.blocks.iter().find(|b| b.name == curve.block) else {
+                return Err(fail(
+                    "block",
+                    format!(
+                        "unknown block '{}'; expected one of {block_names:?}",
+                        curve.block
+                    ),
+                ));
+            };
+            if let Some(part) = curve.part {
+                let parts = match &block.shape {
+                    crate::rigid::BlockShape::Compound { parts } => parts.len(),
+                    _ => 1,
+                };
+                if part >= parts {
+                    return Err(fail(
+                        "part",
+                        format!(
+                            "block '{}' has {parts} part(s), so part {part} does not exist (parts count from 0)",
+                            curve.block
+                        ),
+                    ));
+                }
+            }
+            if !(curve.direction.is_finite() && curve.direction.length() > 0.0) {
+                return Err(fail(
+                    "direction",
+                    "direction must be a finite, non-zero vector".into(),
+                ));
+            }
+            if !(curve.force_scale.is_finite() && curve.displacement_scale.is_finite()) {
+                return Err(fail("force_scale", "scales must be finite".into()));
+            }
+        }
+
         let mut stage_names = BTreeSet::new();
         for stage in &self.stages {
             let at = quoted(&stage.name);
