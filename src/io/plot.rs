@@ -243,6 +243,8 @@ fn draw_series_chart<DB: DrawingBackend>(
         .light_line_style(RGBColor(238, 238, 238))
         .x_desc(x_label)
         .y_desc(y_label)
+        .x_label_formatter(&|v| tick_label(*v))
+        .y_label_formatter(&|v| tick_label(*v))
         .label_style((FONT, 15))
         .axis_desc_style((FONT, 17))
         .draw()?;
@@ -456,6 +458,17 @@ fn trim_fraction_zeros(number: &str) -> &str {
         number.trim_end_matches('0').trim_end_matches('.')
     } else {
         number
+    }
+}
+
+/// A short axis label: plain up to four digits, scientific beyond (or below
+/// 1e-3), so large values such as 4500000.0 Pa do not crowd the axis.
+fn tick_label(v: Real) -> String {
+    let a = v.abs();
+    if a == 0.0 || (1e-3..1e4).contains(&a) {
+        format!("{}", (v * 1e4).round() / 1e4)
+    } else {
+        format!("{v:.2e}")
     }
 }
 
@@ -676,5 +689,13 @@ mod tests {
             0.9..3.1
         ));
         assert!(close(padded_range(std::iter::empty()), 0.0..1.0));
+    }
+
+    #[test]
+    fn tick_labels_switch_to_scientific_for_large_and_tiny_values() {
+        assert_eq!(tick_label(4.5e6), "4.50e6");
+        assert_eq!(tick_label(0.25), "0.25");
+        assert_eq!(tick_label(0.0), "0");
+        assert_eq!(tick_label(-2e-5), "-2.00e-5");
     }
 }

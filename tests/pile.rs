@@ -1,0 +1,96 @@
+//! Pile penetration (paper section 4.3): stages, a compound kinematic
+//! block, Mohr–Coulomb soil and the cone-resistance curve.
+
+mod common;
+
+use mpdem::prelude::*;
+use mpdem::resources::{BlockLog, StageEndReason, StageLog};
+
+/// q_c = f_c / R (Pa) against z/R from the cone part's reaction, one pair
+/// per sample of the penetration stage.
+fn cone_resistance(sim: &Simulation, radius: Real) -> Vec<(Real, Real)> {
+    let world = sim.world();
+    let log = world.resource::<BlockLog>();
+    let start = world.resource::<StageLog>().records[1].end;
+    let origin = log
+        .samples
+        .iter()
+        .find(|s| s.time >= start)
+        .expect("a sample of the penetration stage")
+        .origin;
+    log.samples
+        .iter()
+        .filter(|s| s.time >= start)
+        .filter_map(|s| {
+            let cone = log.parts.iter().find(|p| p.time == s.time && p.part == 1)?;
+            Some(((origin.y - s.origin.y) / radius, cone.force.y / radius))
+        })
+        .collect()
+}
+
+/// The pile scene at a reduced size: cells of 0.16 m (1,500 points), the
+/// pile driven to 2R, the step doubled (still within the CFL and contact
+/// limits at this cell size).
+fn reduced_scene(depth_over_radius: Real) -> Scene {
+    let mut scene = common::load_scene("pile_penetration.ron");
+    scene.grid.cell_size = 0.16;
+    scene.grid.cells = (50, 35);
+    scene.time.dt = 2e-4;
+    scene.stages[2].end = mpdem::scene::StageEnd::Duration(depth_over_radius * 0.4 / 0.1);
+    scene.output.frame_interval = None;
+    scene
+}
+
+#[test]
+fn reduced_pile_penetrates_stably_through_its_stages() {
+    let scene = reduced_scene(2.0);
+    let sim = common::run_scene(&scene);
+    let log = sim.world().resource::<StageLog>();
+    let reasons: Vec<_> = log.records.iter().map(|r| r.reason).collect();
+    assert_eq!(
+        reasons,
+        [
+            StageEndReason::Condition,
+            StageEndReason::Condition,
+            StageEndReason::Duration
+        ],
+        "{:?}",
+        log.warnings
+    );
+    let curve = cone_resistance(&sim, 0.4);
+    let at = |z: Real| {
+        curve
+            .iter()
+            .filter(|(d, _)| (d - z).abs() <= 0.25)
+            .map(|(_, q)| *q)
+            .sum::<Real>()
+            / curve.iter().filter(|(d, _)| (d - z).abs() <= 0.25).count() as Real
+    };
+    let (q1, q2) = (at(1.0), at(1.75));
+    println!(
+        "reduced pile: q_c = {:.3} MPa at z/R = 1, {:.3} MPa at z/R = 1.75",
+        q1 / 1e6,
+        q2 / 1e6
+    );
+    // The cone pushes the soil (positive resistance) and the resistance
+    // grows with depth, as the confining stress does. The full scene's
+    // plateau target (4–6 MPa) is checked by `full_pile_reaches_the_published_plateau`.
+    assert!(q1 > 0.0 && q2 > q1, "q_c {q1} then {q2}");
+}
+
+#[test]
+#[ignore = "the full pile scene: about 16 minutes on 2 cores"]
+fn full_pile_reaches_the_published_plateau() {
+    let sim = common::run_scene(&common::load_scene("pile_penetration.ron"));
+    let curve = cone_resistance(&sim, 0.4);
+    let plateau: Vec<Real> = curve
+        .iter()
+        .filter(|(d, _)| *d >= 6.0)
+        .map(|(_, q)| *q)
+        .collect();
+    let mean = plateau.iter().sum::<Real>() / plateau.len() as Real;
+    println!("full pile: mean q_c over z/R ≥ 6: {:.3} MPa", mean / 1e6);
+    // Target of the issue: a plateau between 4 and 6 MPa (Susila and
+    // Hryciw: about 5 MPa).
+    assert!((4e6..=6e6).contains(&mean), "q_c plateau {mean} Pa");
+}
