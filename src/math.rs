@@ -103,6 +103,23 @@ pub fn spin(l: DMat2) -> Real {
     0.5 * (l.y_axis.x - l.x_axis.y)
 }
 
+/// Local non-viscous damping (Cundall 1987) of a force (or acceleration)
+/// `f` acting on something moving at `v`: each component less α |f_c|
+/// sign(v_c), sign(0) = 0 so that a body at rest feels the whole force.
+#[inline(always)]
+pub fn local_damping(f: DVec2, v: DVec2, alpha: Real) -> DVec2 {
+    let sign = |x: Real| {
+        if x > 0.0 {
+            1.0
+        } else if x < 0.0 {
+            -1.0
+        } else {
+            0.0
+        }
+    };
+    f - alpha * f.abs() * DVec2::new(sign(v.x), sign(v.y))
+}
+
 /// The outer product a ⊗ b as a matrix whose entry (row i, column j) is a_i b_j.
 pub fn outer(a: DVec2, b: DVec2) -> DMat2 {
     DMat2::from_cols(a * b.x, a * b.y)

@@ -2,7 +2,7 @@
 //! or XPIC, eqs. 12a/12b).
 
 use crate::components::{GridLayer, MaterialPoints, StepTravel, TransferScratch, XpicScratch};
-use crate::math::{DVec2, Real};
+use crate::math::{DVec2, Real, local_damping};
 use crate::resources::{Clock, Grid, Settings};
 use crate::shape_functions::Stencil;
 use crate::transfer::{MIN_NODES_PER_TASK, MIN_POINTS_PER_TASK};
@@ -69,7 +69,11 @@ pub fn grid_to_particle(
                     stencil.gather(nodes, row_len, zero, |(old, new), node, w, _| {
                         (old + w * node.velocity, new + w * node.velocity_new)
                     });
-                let change = damped(grid_new - grid_old, *v, alpha);
+                let change = if alpha == 0.0 {
+                    grid_new - grid_old
+                } else {
+                    local_damping(grid_new - grid_old, *v, alpha)
+                };
                 let step = if order >= 1 {
                     let smoothed =
                         stencil.gather(star, row_len, DVec2::ZERO, |acc, u, w, _| acc + w * *u);
@@ -100,25 +104,6 @@ pub fn grid_to_particle(
             })
             .reduce(|| 0.0, Real::max);
     }
-}
-
-/// Local non-viscous damping of a point's velocity change `change` against
-/// its velocity `v`: each component less α |change| sign(v).
-#[inline(always)]
-fn damped(change: DVec2, v: DVec2, alpha: Real) -> DVec2 {
-    if alpha == 0.0 {
-        return change;
-    }
-    let sign = |x: Real| {
-        if x > 0.0 {
-            1.0
-        } else if x < 0.0 {
-            -1.0
-        } else {
-            0.0
-        }
-    };
-    change - alpha * change.abs() * DVec2::new(sign(v.x), sign(v.y))
 }
 
 /// Fills `xpic.star` with the XPIC(m) nodal velocity v* of eq. 12.

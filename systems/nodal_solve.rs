@@ -1,7 +1,7 @@
 //! Algorithm 1, lines 14–15: nodal forces and the momentum update (eqs. 7a, 8a, 8b).
 
 use crate::components::{GridLayer, MaterialPoints, TransferScratch};
-use crate::math::{DVec2, Real};
+use crate::math::{DVec2, local_damping};
 use crate::resources::{Clock, Grid, Settings};
 use crate::transfer::MIN_NODES_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -45,22 +45,9 @@ pub fn solve_nodal_momentum(
                     return;
                 }
                 let force = n.external_force + n.internal_force;
-                let damping =
-                    alpha * force.abs() * DVec2::new(sign(n.velocity.x), sign(n.velocity.y));
-                n.momentum += (force - damping) * dt;
+                n.momentum += local_damping(force, n.velocity, alpha) * dt;
                 n.velocity_new = n.momentum / n.mass;
             });
         layer.apply_constraints(|n| &mut n.velocity_new);
-    }
-}
-
-/// The sign of `x`, zero at zero (unlike `f64::signum`).
-fn sign(x: Real) -> Real {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
     }
 }
