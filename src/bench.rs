@@ -59,6 +59,7 @@ pub fn elastic_block_scene(points: usize) -> Scene {
         probes: Vec::new(),
         output: OutputSpec::default(),
         stages: Vec::new(),
+        body_contacts: Vec::new(),
     }
 }
 

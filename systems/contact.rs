@@ -53,15 +53,16 @@ pub fn compute_rigid_contacts(
     mut bodies: Query<&mut MaterialPoints>,
     mut blocks: Query<(Entity, BlockData)>,
 ) {
-    // Without blocks no contact force was ever written: nothing to reset.
-    if blocks.is_empty() {
-        return;
-    }
+    // The first contact system of the step: it resets every point's
+    // contact force (also when there is no block, for the body contacts).
     for mut points in &mut bodies {
         points
             .contact_force
             .iter_mut()
             .for_each(|f| *f = DVec2::ZERO);
+    }
+    if blocks.is_empty() {
+        return;
     }
     order.clear();
     order.extend(blocks.iter().map(|(e, b)| (b.0.index, e)));

@@ -6,8 +6,8 @@ use crate::components::{
 };
 use crate::math::Real;
 use crate::resources::{
-    BlockLog, BlockPartSample, BlockSample, Clock, Diagnostics, EnergyLog, EnergySample,
-    NumericalFailure, Probes,
+    BlockLog, BlockPartSample, BlockSample, BodyContacts, Clock, Diagnostics, EnergyLog,
+    EnergySample, NumericalFailure, Probes,
 };
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -91,32 +91,37 @@ pub fn advance_clock(mut clock: ResMut<Clock>) {
     clock.advance();
 }
 
+/// Reused space of the energy record: bodies in scene order and the
+/// per-chunk energy sums.
+type EnergyScratch = (Vec<(BodyIndex, Entity)>, Vec<(Real, Real)>);
+
 /// Records probes and energies every `Probes::every` steps, unless the step
 /// failed (a broken state is never recorded).
 ///
-/// Reads: `Clock`, `Diagnostics`, `MaterialPoints`, `Material`, `BodyIndex`.
-/// Writes: `Probes`, `EnergyLog`.
+/// Reads: `Clock`, `Diagnostics`, `MaterialPoints`, `Material`, `BodyIndex`,
+/// `BodyContacts` (the contact springs' energy). Writes: `Probes`, `EnergyLog`.
 pub fn record_probes_and_energy(
     clock: Res<Clock>,
     diagnostics: Res<Diagnostics>,
     mut probes: ResMut<Probes>,
     mut energy: ResMut<EnergyLog>,
-    mut order: Local<Vec<(BodyIndex, Entity)>>,
-    mut scratch: Local<Vec<(Real, Real)>>,
+    body_contacts: Res<BodyContacts>,
+    mut scratch: Local<EnergyScratch>,
     bodies: Query<(Entity, &BodyIndex, &MaterialPoints, &Material)>,
 ) {
     if diagnostics.failure.is_some() || !clock.step.is_multiple_of(probes.every.max(1)) {
         return;
     }
+    let (order, sums) = &mut *scratch;
     probes.record(clock.time, |entity| bodies.get(entity).ok().map(|b| b.2));
-    sort_into_scene_order(&mut order, bodies.iter().map(|(e, i, _, _)| (*i, e)));
+    sort_into_scene_order(order, bodies.iter().map(|(e, i, _, _)| (*i, e)));
     let ordered = order
         .iter()
         .filter_map(|(_, e)| bodies.get(*e).ok())
         .map(|b| (b.2, b.3));
-    energy
-        .samples
-        .push(EnergySample::of(clock.time, ordered, &mut scratch));
+    let mut sample = EnergySample::of(clock.time, ordered, sums);
+    sample.contact = body_contacts.potential_energy();
+    energy.samples.push(sample);
 }
 
 /// Records every block's reaction, pose and velocity with the probes' period,

@@ -6,6 +6,7 @@
 //! systems that touch the same data in one set must be ordered explicitly.
 //! A user system joins the step with `.in_set(MpmSystems::X)`.
 
+mod body_contact;
 mod boundary;
 mod contact;
 mod contact_transfer;
@@ -19,6 +20,7 @@ mod rigid_bodies;
 mod stages;
 mod stress_update;
 
+pub use body_contact::compute_body_contacts;
 pub use boundary::rebuild_node_constraints;
 pub use contact::compute_rigid_contacts;
 pub use contact_transfer::transfer_contact_forces;
@@ -121,7 +123,9 @@ pub fn add_default_systems(schedule: &mut Schedule, scheme: UpdateScheme) {
         reset_grid_layers.in_set(MpmSystems::GridReset),
         rebuild_node_constraints.in_set(MpmSystems::Boundary),
         rebuild_neighbour_lists.in_set(MpmSystems::Neighbours),
-        compute_rigid_contacts.in_set(MpmSystems::Contact),
+        (compute_rigid_contacts, compute_body_contacts)
+            .chain()
+            .in_set(MpmSystems::Contact),
         transfer_contact_forces.in_set(MpmSystems::ContactTransfer),
         particle_to_grid.in_set(MpmSystems::ParticleToGrid),
         update_stress(scheme).in_set(MpmSystems::StressUpdate),

@@ -28,21 +28,23 @@ pub fn write_probes(path: &Path, probes: &Probes) -> std::io::Result<()> {
     out.flush()
 }
 
-/// Writes `energy.csv`: time, kinetic, strain, total (J per metre of
-/// thickness). `total` is kinetic + strain: it leaves out the potential of
-/// gravity and the work of damping and boundaries, so it is conserved only
-/// for a free elastic body.
+/// Writes `energy.csv`: time, kinetic, strain, contact, total (J per metre
+/// of thickness). `total` is kinetic + strain + contact (the body–body
+/// contact springs): it leaves out the potential of gravity and the work of
+/// damping, friction and boundaries, so it is conserved only for free
+/// elastic bodies.
 pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
-    writeln!(out, "time,kinetic,strain,total")?;
+    writeln!(out, "time,kinetic,strain,contact,total")?;
     for s in &energy.samples {
         writeln!(
             out,
-            "{:e},{:e},{:e},{:e}",
+            "{:e},{:e},{:e},{:e},{:e}",
             s.time,
             s.kinetic,
             s.strain,
-            s.kinetic + s.strain
+            s.contact,
+            s.total()
         )?;
     }
     out.flush()

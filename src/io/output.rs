@@ -191,10 +191,11 @@ impl RunOutput {
         let pick = |f: fn(&crate::resources::EnergySample) -> Real| -> Vec<(Real, Real)> {
             energy.samples.iter().map(|s| (s.time, f(s))).collect()
         };
-        let (kinetic, strain, total) = (
+        let (kinetic, strain, contact, total) = (
             pick(|s| s.kinetic),
             pick(|s| s.strain),
-            pick(|s| s.kinetic + s.strain),
+            pick(|s| s.contact),
+            pick(|s| s.total()),
         );
         plot_series(
             &self.dir.join("energy.png"),
@@ -210,6 +211,11 @@ impl RunOutput {
                 Series {
                     name: "strain",
                     points: &strain,
+                    style: SeriesStyle::Line,
+                },
+                Series {
+                    name: "contact",
+                    points: &contact,
                     style: SeriesStyle::Line,
                 },
                 Series {

@@ -1,6 +1,7 @@
 //! ECS resources: the state shared by every body (grid, clock, settings,
 //! gravity) and the run's records (probes, energy, diagnostics).
 
+mod body_contacts;
 mod clock;
 mod contact_settings;
 mod diagnostics;
@@ -9,6 +10,7 @@ mod records;
 mod settings;
 mod stages;
 
+pub use body_contacts::{BodyContacts, BodyPairContact, BodyPairLaw};
 pub use clock::Clock;
 pub use contact_settings::{BlockContactHistory, BlockContactKey, ContactSettings, Penetration};
 pub use diagnostics::{Diagnostics, NumericalFailure};

@@ -81,6 +81,8 @@ pub struct EnergySample {
     pub kinetic: Real,
     /// Stored strain energy Σ w(σ_p) V_p (J/m).
     pub strain: Real,
+    /// Potential energy of the body–body contact springs (J/m).
+    pub contact: Real,
 }
 
 impl EnergySample {
@@ -95,6 +97,7 @@ impl EnergySample {
             time,
             kinetic: 0.0,
             strain: 0.0,
+            contact: 0.0,
         };
         for (points, material) in bodies {
             let (kinetic, strain) = points.energies(material.model.as_model(), scratch);
@@ -102,6 +105,12 @@ impl EnergySample {
             sample.strain += strain;
         }
         sample
+    }
+
+    /// Kinetic + strain + contact energy (J/m): conserved by a free elastic
+    /// system without damping (gravity's potential is not included).
+    pub fn total(&self) -> Real {
+        self.kinetic + self.strain + self.contact
     }
 }
 

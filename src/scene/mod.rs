@@ -58,6 +58,11 @@ pub struct Scene {
     /// Contact settings. Default: see [`ContactSettings`].
     #[serde(default)]
     pub contact: ContactSettings,
+    /// DEM contact laws between pairs of bodies (section 3.3). Bodies with no
+    /// law between them do not interact: each has its own grid layer.
+    /// Default: none.
+    #[serde(default)]
+    pub body_contacts: Vec<BodyContactSpec>,
     /// Watched points. Default: none.
     #[serde(default)]
     pub probes: Vec<ProbeSpec>,
@@ -249,6 +254,16 @@ pub enum InitialStress {
         #[serde(default)]
         surface: Option<Real>,
     },
+}
+
+/// The DEM law between the points of two bodies.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodyContactSpec {
+    /// The two bodies' names.
+    pub between: (String, String),
+    /// Stiffnesses (N/m per metre of thickness), friction and damping.
+    pub law: ContactLaw,
 }
 
 /// A watched material point.

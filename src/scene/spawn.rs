@@ -7,8 +7,8 @@ use crate::components::{
 };
 use crate::math::{DVec2, Real, SymTensor};
 use crate::resources::{
-    BlockLog, Clock, Diagnostics, EnergyLog, EnergySample, Gravity, Grid, Probe, Probes, StageLog,
-    StagePlan,
+    BlockLog, BodyContacts, BodyPairLaw, Clock, Diagnostics, EnergyLog, EnergySample, Gravity,
+    Grid, Probe, Probes, StageLog, StagePlan,
 };
 use bevy_ecs::prelude::*;
 
@@ -149,6 +149,24 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
     energy.samples.push(initial_energy);
     world.insert_resource(energy);
     world.insert_resource(StageLog::default());
+    let index_of = |name: &str| scene.bodies.iter().position(|b| b.name == name);
+    let mut laws: Vec<BodyPairLaw> = scene
+        .body_contacts
+        .iter()
+        .filter_map(|spec| {
+            let (i, j) = (index_of(&spec.between.0)?, index_of(&spec.between.1)?);
+            Some(BodyPairLaw {
+                a: i.min(j) as u32,
+                b: i.max(j) as u32,
+                law: spec.law,
+            })
+        })
+        .collect();
+    laws.sort_unstable_by_key(|l| (l.a, l.b));
+    world.insert_resource(BodyContacts {
+        laws,
+        ..Default::default()
+    });
     if !scene.stages.is_empty() {
         let mut plan = StagePlan {
             scene: scene.clone(),

@@ -13,6 +13,10 @@ use std::path::Path;
 /// beyond what MPM accuracy gains from; larger counts are almost surely typos.
 const MAX_POINTS_PER_CELL: u32 = 8;
 
+/// Most bodies of a scene with body contacts: the detection marks each
+/// cell's bodies in a 64-bit mask.
+const MAX_CONTACT_BODIES: usize = 64;
+
 /// Most nodes a grid may have: 5e7 nodes make an 4.4 GB layer per body (88
 /// bytes a node), beyond what a 2D run on one machine can use; node indices
 /// are stored as u32, which this also keeps in range.
@@ -356,6 +360,49 @@ impl Scene {
             if !(curve.force_scale.is_finite() && curve.displacement_scale.is_finite()) {
                 return Err(fail("force_scale", "scales must be finite".into()));
             }
+        }
+
+        let mut pairs = BTreeSet::new();
+        for spec in &self.body_contacts {
+            let (a, b) = (&spec.between.0, &spec.between.1);
+            let at = ["body_contacts", "between"];
+            for name in [a, b] {
+                if !body_names.contains(name.as_str()) {
+                    return Err(invalid(
+                        &at,
+                        format!(
+                            "body_contacts: unknown body '{name}'; expected one of {body_names:?}"
+                        ),
+                    ));
+                }
+            }
+            if a == b {
+                return Err(invalid(
+                    &at,
+                    format!("body_contacts: a body ('{a}') cannot contact itself"),
+                ));
+            }
+            if !pairs.insert((a.min(b), a.max(b))) {
+                return Err(invalid(
+                    &at,
+                    format!("body_contacts: the pair ('{a}', '{b}') has two laws"),
+                ));
+            }
+            spec.law.check().map_err(|e| {
+                invalid(
+                    &["body_contacts", "law"],
+                    format!("body_contacts ('{a}', '{b}'): {e}"),
+                )
+            })?;
+        }
+        if !self.body_contacts.is_empty() && self.bodies.len() > MAX_CONTACT_BODIES {
+            return Err(invalid(
+                &["body_contacts"],
+                format!(
+                    "body_contacts: at most {MAX_CONTACT_BODIES} bodies are supported, the scene has {}",
+                    self.bodies.len()
+                ),
+            ));
         }
 
         let mut stage_names = BTreeSet::new();

@@ -1,0 +1,145 @@
+//! Nonrigid–nonrigid contact on the multi-layer grid (paper section 3.3):
+//! two colliding rings.
+
+mod common;
+
+use mpdem::prelude::*;
+
+/// The two-rings scene, with 1 point per cell instead of 2 × 2 when
+/// `reduced` (a quarter of the points; the collision is the same).
+fn rings(reduced: bool, with_contact: bool) -> Scene {
+    let mut scene = common::load_scene("two_rings.ron");
+    if reduced {
+        for body in &mut scene.bodies {
+            body.points_per_cell = 1;
+        }
+    }
+    if !with_contact {
+        scene.body_contacts.clear();
+    }
+    scene
+}
+
+/// Centre of mass and its velocity of a body.
+fn centre(sim: &mut Simulation, name: &str) -> (DVec2, DVec2) {
+    let points = sim.points_of(name).expect("ring");
+    let m = points.total_mass();
+    let weighted = |column: &[DVec2]| {
+        points
+            .mass
+            .iter()
+            .zip(column)
+            .map(|(w, x)| *w * *x)
+            .sum::<DVec2>()
+            / m
+    };
+    (weighted(&points.position), weighted(&points.velocity))
+}
+
+/// Largest distance of a ring's points from its centre of mass.
+fn reach(sim: &mut Simulation, name: &str) -> Real {
+    let (c, _) = centre(sim, name);
+    sim.points_of(name)
+        .expect("ring")
+        .position
+        .iter()
+        .map(|x| x.distance(c))
+        .fold(0.0, Real::max)
+}
+
+#[test]
+fn rings_on_separate_layers_pass_through_each_other_without_a_contact_law() {
+    let mut scene = rings(true, false);
+    scene.time.end = 2.5e-3;
+    let mut sim = common::run_scene(&scene);
+    let (left, v_left) = centre(&mut sim, "left");
+    let (right, _) = centre(&mut sim, "right");
+    println!(
+        "no contact law: centres at {:.4} / {:.4} m",
+        left.x, right.x
+    );
+    // 2.5 ms at 30 m/s: each centre moves 75 mm, so they have crossed.
+    assert!(left.x > right.x, "{left} vs {right}");
+    assert!(
+        (v_left.x - 30.0).abs() < 1e-6 * 30.0,
+        "untouched ring keeps its speed: {v_left}"
+    );
+}
+
+#[test]
+fn colliding_rings_rebound_and_stay_whole() {
+    // The scene as it is (2 × 2 points per cell, ~12 s): with 1 point per
+    // cell the rings rebound at only 4 m/s and distort far more (measured).
+    let mut sim = common::run_scene(&rings(false, true));
+    let (_, v_left) = centre(&mut sim, "left");
+    let (_, v_right) = centre(&mut sim, "right");
+    let reaches = [reach(&mut sim, "left"), reach(&mut sim, "right")];
+    let log = sim.world().resource::<mpdem::resources::EnergyLog>();
+    let (first, last) = (log.samples[0].total(), log.samples.last().unwrap().total());
+    println!(
+        "two rings: centre velocities {:.2} / {:.2} m/s, reach {:.4} / {:.4} m, energy drift {:+.2}%",
+        v_left.x,
+        v_right.x,
+        reaches[0],
+        reaches[1],
+        100.0 * (last / first - 1.0)
+    );
+    // Rebound: the relative velocity of the centres has reversed.
+    assert!(v_left.x - v_right.x < 0.0, "{v_left} vs {v_right}");
+    // No fragmentation: every point stays within 1.25 outer radii of its
+    // ring's centre (the rebounding rings still ring; a point torn off
+    // would be carried away at tens of m/s).
+    for r in reaches {
+        assert!(r < 1.25 * 0.04, "a point is {r} m from its ring's centre");
+    }
+}
+
+#[test]
+#[ignore = "the energy target of the issue is not met yet (measured -7.2%)"]
+fn full_two_rings_conserve_energy_within_five_percent() {
+    let sim = common::run_scene(&rings(false, true));
+    let log = sim.world().resource::<mpdem::resources::EnergyLog>();
+    let (first, last) = (log.samples[0].total(), log.samples.last().unwrap().total());
+    let drift = last / first - 1.0;
+    println!("two rings: energy drift {:+.2}%", 100.0 * drift);
+    // Target of the issue: at most 5% over 3.8 ms.
+    assert!(drift.abs() <= 0.05, "drift {drift}");
+}
+
+#[test]
+fn body_contacts_give_the_same_state_for_one_and_two_threads() {
+    let mut scene = rings(true, true);
+    scene.time.end = 6e-4;
+    let hash = || {
+        let mut sim = Simulation::from_scene(&scene).unwrap();
+        sim.run().unwrap();
+        assert!(
+            !sim.world()
+                .resource::<mpdem::resources::BodyContacts>()
+                .current
+                .is_empty()
+        );
+        sim.state_hash()
+    };
+    let one = common::with_threads(1, hash);
+    let two = common::with_threads(2, hash);
+    assert_eq!(one, two);
+}
+
+#[test]
+fn bad_body_contacts_are_refused() {
+    let mut scene = rings(true, true);
+    scene.body_contacts[0].between.1 = "middle".into();
+    let message = Simulation::from_scene(&scene)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(message.contains("unknown body 'middle'"), "{message}");
+    let mut scene = rings(true, true);
+    scene.body_contacts[0].law.friction = -1.0;
+    let message = Simulation::from_scene(&scene)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(message.contains("friction must be ≥ 0"), "{message}");
+}
