@@ -23,17 +23,10 @@ fn rings(reduced: bool, with_contact: bool) -> Scene {
 /// Centre of mass and its velocity of a body.
 fn centre(sim: &mut Simulation, name: &str) -> (DVec2, DVec2) {
     let points = sim.points_of(name).expect("ring");
-    let m = points.total_mass();
-    let weighted = |column: &[DVec2]| {
-        points
-            .mass
-            .iter()
-            .zip(column)
-            .map(|(w, x)| *w * *x)
-            .sum::<DVec2>()
-            / m
-    };
-    (weighted(&points.position), weighted(&points.velocity))
+    (
+        common::mass_weighted_mean(points, &points.position),
+        common::mass_weighted_mean(points, &points.velocity),
+    )
 }
 
 /// Largest distance of a ring's points from its centre of mass.

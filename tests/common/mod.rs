@@ -55,19 +55,21 @@ pub fn edited_wave_scene(tag: &str, from: &str, to: &str) -> (PathBuf, PathBuf) 
     (base, scene)
 }
 
-/// Motion of a body's centre of mass: (displacement, velocity), the
-/// mass-weighted means over its points.
+/// The mass-weighted mean of a column of a body's points (e.g. positions:
+/// the centre of mass).
+pub fn mass_weighted_mean(points: &MaterialPoints, column: &[DVec2]) -> DVec2 {
+    points
+        .mass
+        .iter()
+        .zip(column)
+        .map(|(m, x)| *m * *x)
+        .sum::<DVec2>()
+        / points.total_mass()
+}
+
+/// Motion of a body's centre of mass: (displacement, velocity).
 pub fn centre_of_mass_motion(points: &MaterialPoints) -> (DVec2, DVec2) {
-    let total = points.total_mass();
-    let mean = |column: &[DVec2]| {
-        points
-            .mass
-            .iter()
-            .zip(column)
-            .map(|(m, x)| *m * *x)
-            .sum::<DVec2>()
-            / total
-    };
+    let mean = |column: &[DVec2]| mass_weighted_mean(points, column);
     (
         mean(&points.position) - mean(&points.initial_position),
         mean(&points.velocity),
