@@ -3,7 +3,7 @@
 use crate::components::{BodyIndex, MaterialPoints, sort_into_scene_order};
 use crate::contact::pair_force;
 use crate::math::DVec2;
-use crate::resources::{BodyContacts, BodyPairContact, Clock, Grid};
+use crate::resources::{BodyContacts, BodyPairContact, Clock, Grid, law_between};
 use bevy_ecs::prelude::*;
 
 /// Nonrigid–nonrigid DEM contacts. Each body keeps its own layer; contact is
@@ -113,11 +113,7 @@ pub fn compute_body_contacts(
                     if b <= a {
                         continue;
                     }
-                    let Some(law) = laws
-                        .binary_search_by(|l| (l.a, l.b).cmp(&(a, b)))
-                        .ok()
-                        .map(|k| laws[k].law)
-                    else {
+                    let Some(&law) = law_between(laws, a, b) else {
                         continue;
                     };
                     let Ok((_, _, second)) = bodies.get(order[b as usize].1) else {

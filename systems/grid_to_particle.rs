@@ -69,11 +69,8 @@ pub fn grid_to_particle(
                     stencil.gather(nodes, row_len, zero, |(old, new), node, w, _| {
                         (old + w * node.velocity, new + w * node.velocity_new)
                     });
-                let change = if alpha == 0.0 {
-                    grid_new - grid_old
-                } else {
-                    local_damping(grid_new - grid_old, *v, alpha)
-                };
+                // At α = 0 this is the undamped change, bit for bit.
+                let change = local_damping(grid_new - grid_old, *v, alpha);
                 let step = if order >= 1 {
                     let smoothed =
                         stencil.gather(star, row_len, DVec2::ZERO, |acc, u, w, _| acc + w * *u);
@@ -92,12 +89,12 @@ pub fn grid_to_particle(
                     *v = (1.0 - beta) * (*v + change) + beta * pic;
                     step
                 };
-                let before = *x;
-                *x = (*x + step).clamp(lo, hi);
-                if x.x != before.x + step.x {
+                let (before, moved) = (*x, *x + step);
+                *x = moved.clamp(lo, hi);
+                if x.x != moved.x {
                     v.x = 0.0;
                 }
-                if x.y != before.y + step.y {
+                if x.y != moved.y {
                     v.y = 0.0;
                 }
                 (*x - before).length()

@@ -61,14 +61,18 @@ pub struct BodyContacts {
     pub candidates: Vec<(u32, u32, u32)>,
 }
 
+/// The law between bodies `i` and `j` in `laws` (sorted by (a, b)), if any.
+pub fn law_between(laws: &[BodyPairLaw], i: u32, j: u32) -> Option<&ContactLaw> {
+    let (a, b) = (i.min(j), i.max(j));
+    laws.binary_search_by(|l| (l.a, l.b).cmp(&(a, b)))
+        .ok()
+        .map(|k| &laws[k].law)
+}
+
 impl BodyContacts {
     /// The law between bodies `i` and `j`, if any.
     pub fn law(&self, i: u32, j: u32) -> Option<&ContactLaw> {
-        let (a, b) = (i.min(j), i.max(j));
-        self.laws
-            .binary_search_by(|l| (l.a, l.b).cmp(&(a, b)))
-            .ok()
-            .map(|k| &self.laws[k].law)
+        law_between(&self.laws, i, j)
     }
 
     /// Contact potential energy Σ ½ k_n δ² + |f_t|² / (2 k_t) (J/m).

@@ -18,6 +18,13 @@ pub enum EdgeCondition {
     Slip,
 }
 
+impl EdgeCondition {
+    /// Whether the edge is a wall (fixed or slip) that points may not cross.
+    pub fn is_wall(self) -> bool {
+        self != Self::Free
+    }
+}
+
 /// Conditions on the four edges of the grid.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -59,14 +66,13 @@ impl Grid {
 
     /// The grid as the shape functions see it: walls where an edge is fixed or slip.
     pub fn stencil_grid(&self) -> StencilGrid {
-        let wall = |c: EdgeCondition| c != EdgeCondition::Free;
         StencilGrid {
             origin: self.origin,
             inv_cell_size: 1.0 / self.cell_size,
             nodes: self.nodes(),
             walls: [
-                [wall(self.edges.left), wall(self.edges.right)],
-                [wall(self.edges.bottom), wall(self.edges.top)],
+                [self.edges.left.is_wall(), self.edges.right.is_wall()],
+                [self.edges.bottom.is_wall(), self.edges.top.is_wall()],
             ],
         }
     }
@@ -76,7 +82,7 @@ impl Grid {
     /// where it is free.
     pub fn wall_bounds(&self) -> (DVec2, DVec2) {
         let bound = |c: EdgeCondition, at: Real, open: Real| {
-            if c == EdgeCondition::Free { open } else { at }
+            if c.is_wall() { at } else { open }
         };
         let (lo, hi) = (self.origin, self.max());
         (

@@ -10,7 +10,7 @@ mod records;
 mod settings;
 mod stages;
 
-pub use body_contacts::{BodyContacts, BodyPairContact, BodyPairLaw};
+pub use body_contacts::{BodyContacts, BodyPairContact, BodyPairLaw, law_between};
 pub use clock::Clock;
 pub use contact_settings::{BlockContactHistory, BlockContactKey, ContactSettings, Penetration};
 pub use diagnostics::{Diagnostics, NumericalFailure};
