@@ -53,6 +53,7 @@ pub fn elastic_block_scene(points: usize) -> Scene {
             initial_stress: None,
             constraints: Vec::new(),
             contact_radius: None,
+            acceleration: None,
         }],
         blocks: Vec::new(),
         contact: Default::default(),

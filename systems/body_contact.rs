@@ -149,6 +149,7 @@ pub fn compute_body_contacts(
                         tangential: f.tangential,
                         overlap,
                         at,
+                        radius: 0.5 * (rp + rq),
                     });
                 }
             }

@@ -6,8 +6,8 @@ use crate::components::{
 };
 use crate::math::Real;
 use crate::resources::{
-    BlockLog, BlockPartSample, BlockSample, BodyContacts, Clock, Diagnostics, EnergyLog,
-    EnergySample, NumericalFailure, Probes,
+    BlockLog, BlockPartSample, BlockSample, BodyContacts, BodyPairLog, BodyPairSample, Clock,
+    Diagnostics, EnergyLog, EnergySample, NumericalFailure, Probes,
 };
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -122,6 +122,30 @@ pub fn record_probes_and_energy(
     let mut sample = EnergySample::of(clock.time, ordered, sums);
     sample.contact = body_contacts.potential_energy();
     energy.samples.push(sample);
+}
+
+/// Records the contacts of every pair of bodies with a law (resultant,
+/// count, zone half-width) with the probes' period, unless the step failed.
+///
+/// Reads: `Clock`, `Diagnostics`, `Probes::every`, `BodyContacts`. Writes: `BodyPairLog`.
+pub fn record_body_pairs(
+    clock: Res<Clock>,
+    diagnostics: Res<Diagnostics>,
+    probes: Res<Probes>,
+    contacts: Res<BodyContacts>,
+    mut log: ResMut<BodyPairLog>,
+) {
+    if diagnostics.failure.is_some() || !clock.step.is_multiple_of(probes.every.max(1)) {
+        return;
+    }
+    let time = clock.time;
+    log.samples
+        .extend(contacts.laws.iter().map(|l| BodyPairSample {
+            time,
+            a: l.a,
+            b: l.b,
+            summary: contacts.summary(l.a, l.b),
+        }));
 }
 
 /// Records every block's reaction, pose and velocity with the probes' period,

@@ -24,7 +24,9 @@ pub use body_contact::compute_body_contacts;
 pub use boundary::rebuild_node_constraints;
 pub use contact::compute_rigid_contacts;
 pub use contact_transfer::transfer_contact_forces;
-pub use diagnostics::{advance_clock, check_finite, record_blocks, record_probes_and_energy};
+pub use diagnostics::{
+    advance_clock, check_finite, record_blocks, record_body_pairs, record_probes_and_energy,
+};
 pub use grid_reset::reset_grid_layers;
 pub use grid_to_particle::grid_to_particle;
 pub use neighbours::rebuild_neighbour_lists;
@@ -137,6 +139,7 @@ pub fn add_default_systems(schedule: &mut Schedule, scheme: UpdateScheme) {
             advance_clock,
             record_probes_and_energy,
             record_blocks,
+            record_body_pairs,
             advance_stages,
         )
             .chain()

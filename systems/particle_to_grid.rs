@@ -1,7 +1,9 @@
 //! Algorithm 1, line 12: mass, momentum and external force to each body's
 //! layer (eqs. 7b, 8c, 8d), then the nodal velocity p_i / m_i.
 
-use crate::components::{BodyName, GridLayer, MassMomentumForce, MaterialPoints, TransferScratch};
+use crate::components::{
+    BodyAcceleration, BodyName, GridLayer, MassMomentumForce, MaterialPoints, TransferScratch,
+};
 use crate::contact::ForceApplication;
 use crate::math::DVec2;
 use crate::resources::{
@@ -13,11 +15,14 @@ use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
 /// Computes every point's stencil at x^n, scatters S_ip m_p, S_ip m_p V_p and
-/// S_ip (m_p g + f_p,ext [+ f_p,contact in `BodyForce` mode]) to the body's layer, and sets the nodal velocity,
+/// S_ip (m_p (g + b(t)) + f_p,ext [+ f_p,contact in `BodyForce` mode]) to
+/// the body's layer (b the body's own `BodyAcceleration`, if any, at the
+/// step's start time), and sets the nodal velocity,
 /// constrained. A point whose support leaves the grid is reported as a
 /// numerical failure and contributes nothing.
 ///
-/// Reads: `Grid`, `Settings`, `Gravity`, `ContactSettings`, `Clock`, `BodyName`, `MaterialPoints`.
+/// Reads: `Grid`, `Settings`, `Gravity`, `ContactSettings`, `Clock`, `BodyName`,
+/// `BodyAcceleration`, `MaterialPoints`.
 /// Writes: `TransferScratch`, `GridLayer::nodes` (mass, momentum, external force, velocity), `Diagnostics`.
 pub fn particle_to_grid(
     grid: Res<Grid>,
@@ -28,6 +33,7 @@ pub fn particle_to_grid(
     mut diagnostics: ResMut<Diagnostics>,
     mut bodies: Query<(
         &BodyName,
+        Option<&BodyAcceleration>,
         &MaterialPoints,
         &mut GridLayer,
         &mut TransferScratch,
@@ -37,7 +43,8 @@ pub fn particle_to_grid(
     let stencil_grid = grid.stencil_grid();
     let (kernel, g) = (settings.shape_function, gravity.0);
     let body_force = contact.force_application == ForceApplication::BodyForce;
-    for (name, points, mut layer, mut scratch) in &mut bodies {
+    for (name, own, points, mut layer, mut scratch) in &mut bodies {
+        let g = g + own.map_or(DVec2::ZERO, |a| a.at(clock.time));
         let TransferScratch {
             stencils,
             mass_momentum,

@@ -57,3 +57,48 @@ pub struct RegionConstraint {
 /// The region constraints of one body's layer.
 #[derive(Component, Clone, Debug, Default, PartialEq)]
 pub struct RegionConstraints(pub Vec<RegionConstraint>);
+
+/// A body force per unit mass on one body, on top of gravity (scene
+/// `acceleration`), ramped linearly from zero over `ramp_time` so a load can
+/// be applied quasi-statically (e.g. the Hertz disks pushed together).
+#[derive(Component, Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodyAcceleration {
+    /// Full acceleration (m/s²).
+    pub value: DVec2,
+    /// Time to reach it from zero (s), ≥ 0. Default 0: applied at once.
+    #[serde(default, deserialize_with = "crate::scene::rules::de_non_negative")]
+    pub ramp_time: Real,
+}
+
+impl BodyAcceleration {
+    /// The acceleration at `time`: value × min(time / ramp_time, 1).
+    pub fn at(&self, time: Real) -> DVec2 {
+        if time >= self.ramp_time {
+            self.value
+        } else {
+            self.value * (time / self.ramp_time)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_ramped_acceleration_grows_linearly_then_holds() {
+        let load = BodyAcceleration {
+            value: DVec2::new(4.0, -2.0),
+            ramp_time: 2.0,
+        };
+        assert_eq!(load.at(0.0), DVec2::ZERO);
+        assert_eq!(load.at(1.0), DVec2::new(2.0, -1.0));
+        assert_eq!(load.at(5.0), load.value);
+        let at_once = BodyAcceleration {
+            ramp_time: 0.0,
+            ..load
+        };
+        assert_eq!(at_once.at(0.0), load.value);
+    }
+}

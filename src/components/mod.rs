@@ -9,7 +9,8 @@ mod rigid;
 mod transfer_scratch;
 
 pub use body::{
-    BodyIndex, BodyName, Material, RegionConstraint, RegionConstraints, sort_into_scene_order,
+    BodyAcceleration, BodyIndex, BodyName, Material, RegionConstraint, RegionConstraints,
+    sort_into_scene_order,
 };
 pub use grid_layer::{Fix, GridLayer, GridNode, NodeConstraint};
 pub use material_points::{MaterialPoints, NewPoint, StepTravel};

@@ -1,7 +1,7 @@
 //! CSV time series: probes and energies.
 
 use crate::math::Real;
-use crate::resources::{BlockLog, EnergyLog, Probes, StageLog};
+use crate::resources::{BlockLog, BodyPairLog, EnergyLog, Probes, StageLog};
 use std::io::Write;
 use std::path::Path;
 
@@ -45,6 +45,35 @@ pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
             s.strain,
             s.contact,
             s.total()
+        )?;
+    }
+    out.flush()
+}
+
+/// Writes `body_contacts.csv`: one row per pair of bodies with a law and
+/// sample time, columns time, body_a, body_b, force_x, force_y (on body_a,
+/// N/m), contacts (point pairs), half_width and pressure_half_width (m, see
+/// [`crate::resources::PairSummary`]). `names` are the bodies in scene order.
+pub fn write_body_pairs(path: &Path, log: &BodyPairLog, names: &[String]) -> std::io::Result<()> {
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(
+        out,
+        "time,body_a,body_b,force_x,force_y,contacts,half_width,pressure_half_width"
+    )?;
+    for s in &log.samples {
+        let name = |i: u32| names.get(i as usize).map_or("?", String::as_str);
+        let p = &s.summary;
+        writeln!(
+            out,
+            "{:e},{},{},{:e},{:e},{},{:e},{:e}",
+            s.time,
+            name(s.a),
+            name(s.b),
+            p.force.x,
+            p.force.y,
+            p.contacts,
+            p.half_width,
+            p.pressure_half_width
         )?;
     }
     out.flush()

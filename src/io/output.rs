@@ -6,7 +6,7 @@ use super::plot::{Series, SeriesStyle, plot_points, plot_series};
 use super::vtk::{PointFrame, write_collection, write_outlines, write_point_frame};
 use crate::components::{BlockId, BlockOutline, BodyIndex, MaterialPoints, Pose};
 use crate::math::{DVec2, Real};
-use crate::resources::{BlockLog, EnergyLog, Grid, Probes, StageLog};
+use crate::resources::{BlockLog, BodyPairLog, EnergyLog, Grid, Probes, StageLog};
 use crate::scene::CurveSpec;
 use crate::simulation::Simulation;
 use std::path::{Path, PathBuf};
@@ -14,7 +14,8 @@ use std::path::{Path, PathBuf};
 /// Writes a run's results into one folder:
 /// * `vtk/points_NNNNN.vtu` every frame interval and `points.pvd` (open this in ParaView);
 /// * with rigid blocks, their outlines: `vtk/blocks_NNNNN.vtu` and `blocks.pvd`, and `blocks.csv`;
-/// * `probes.csv`, `energy.csv`, and with stages `stages.csv`;
+/// * `probes.csv`, `energy.csv`, with stages `stages.csv`, and with body
+///   contact laws `body_contacts.csv`;
 /// * `snapshot.png` (final state coloured by displacement magnitude),
 ///   `energy.png` and `probe_<name>_{velocity,displacement,stress}.png`.
 pub struct RunOutput {
@@ -93,6 +94,7 @@ impl RunOutput {
         if !self.block_frames.is_empty() {
             write_collection(&self.dir.join("blocks.pvd"), &self.block_frames)?;
         }
+        let body_names: Vec<String> = sim.bodies().into_iter().map(|(_, n)| n).collect();
         let world = sim.world();
         let probes = world.resource::<Probes>();
         let energy = world.resource::<EnergyLog>();
@@ -101,6 +103,10 @@ impl RunOutput {
         let blocks = world.resource::<BlockLog>();
         if !blocks.names.is_empty() {
             csv::write_blocks(&self.dir.join("blocks.csv"), blocks)?;
+        }
+        let pairs = world.resource::<BodyPairLog>();
+        if !pairs.samples.is_empty() {
+            csv::write_body_pairs(&self.dir.join("body_contacts.csv"), pairs, &body_names)?;
         }
         let stages = world.resource::<StageLog>();
         if !stages.records.is_empty() {

@@ -10,13 +10,14 @@ mod records;
 mod settings;
 mod stages;
 
-pub use body_contacts::{BodyContacts, BodyPairContact, BodyPairLaw, law_between};
+pub use body_contacts::{BodyContacts, BodyPairContact, BodyPairLaw, PairSummary, law_between};
 pub use clock::Clock;
 pub use contact_settings::{BlockContactHistory, BlockContactKey, ContactSettings, Penetration};
 pub use diagnostics::{Diagnostics, NumericalFailure};
 pub use grid::{EdgeCondition, EdgeConditions, Grid};
 pub use records::{
-    BlockLog, BlockPartSample, BlockSample, EnergyLog, EnergySample, Probe, ProbeSample, Probes,
+    BlockLog, BlockPartSample, BlockSample, BodyPairLog, BodyPairSample, EnergyLog, EnergySample,
+    Probe, ProbeSample, Probes,
 };
 pub use settings::{Gravity, Settings, UpdateScheme};
 pub use stages::{AppliedLoad, StageEndReason, StageLog, StagePlan, StageRecord};

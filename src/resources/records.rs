@@ -1,5 +1,6 @@
 //! Time series recorded during a run: probes and energies.
 
+use super::body_contacts::PairSummary;
 use crate::components::{Material, MaterialPoints};
 use crate::math::{DVec2, Real, SymTensor};
 use bevy_ecs::prelude::{Entity, Resource};
@@ -164,4 +165,25 @@ pub struct BlockPartSample {
     pub time: Real,
     /// Force of the points on the part (N/m).
     pub force: DVec2,
+}
+
+/// The contacts between two bodies with a contact law at one time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BodyPairSample {
+    /// Simulated time (s).
+    pub time: Real,
+    /// The lower body index.
+    pub a: u32,
+    /// The higher body index.
+    pub b: u32,
+    /// Their contacts summed up.
+    pub summary: PairSummary,
+}
+
+/// Body–body contact history, every pair with a law, recorded with the
+/// probes' period.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct BodyPairLog {
+    /// Samples in time order, pairs in (a, b) order within a time.
+    pub samples: Vec<BodyPairSample>,
 }

@@ -21,7 +21,7 @@ pub use spawn_blocks::spawn_block;
 pub use stages::{BlockVelocity, Side, StageEnd, StageSpec, SurfaceTraction};
 pub use velocity_field::VelocityField;
 
-use crate::components::{RegionConstraint, RigidVelocity};
+use crate::components::{BodyAcceleration, RegionConstraint, RigidVelocity};
 use crate::contact::ContactLaw;
 use crate::materials::MaterialModel;
 use crate::math::{DVec2, Real};
@@ -156,6 +156,11 @@ pub struct BodySpec {
     /// spacing, h / (2 n), so the disks reach the body's outline.
     #[serde(default)]
     pub contact_radius: Option<Real>,
+    /// A body force per unit mass on this body, on top of gravity, e.g.
+    /// `acceleration: Some((value: (1e3, 0.0), ramp_time: 1e-4))`. Default:
+    /// none.
+    #[serde(default)]
+    pub acceleration: Option<BodyAcceleration>,
 }
 
 /// A rigid block.

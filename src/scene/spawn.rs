@@ -7,8 +7,8 @@ use crate::components::{
 };
 use crate::math::{DVec2, Real, SymTensor};
 use crate::resources::{
-    BlockLog, BodyContacts, BodyPairLaw, Clock, Diagnostics, EnergyLog, EnergySample, Gravity,
-    Grid, Probe, Probes, StageLog, StagePlan,
+    BlockLog, BodyContacts, BodyPairLaw, BodyPairLog, Clock, Diagnostics, EnergyLog, EnergySample,
+    Gravity, Grid, Probe, Probes, StageLog, StagePlan,
 };
 use bevy_ecs::prelude::*;
 
@@ -66,6 +66,9 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
                 RegionConstraints(spec.constraints.clone()),
             ))
             .id();
+        if let Some(acceleration) = spec.acceleration {
+            world.entity_mut(entity).insert(acceleration);
+        }
         bodies.push(entity);
     }
     for material in &scene.materials {
@@ -163,6 +166,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         })
         .collect();
     laws.sort_unstable_by_key(|l| (l.a, l.b));
+    world.insert_resource(BodyPairLog::default());
     world.insert_resource(BodyContacts {
         laws,
         ..Default::default()
