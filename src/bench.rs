@@ -54,6 +54,7 @@ pub fn elastic_block_scene(points: usize) -> Scene {
             constraints: Vec::new(),
             contact_radius: None,
             acceleration: None,
+            group: None,
         }],
         blocks: Vec::new(),
         contact: Default::default(),

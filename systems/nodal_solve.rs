@@ -2,22 +2,25 @@
 
 use crate::components::{GridLayer, MaterialPoints, TransferScratch};
 use crate::math::{DVec2, local_damping};
-use crate::resources::{Clock, Grid, Settings};
+use crate::resources::{Clock, Grid, Settings, SharedLayers};
 use crate::transfer::MIN_NODES_PER_TASK;
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
-/// Scatters the internal force f_i,int = −Σ_p V_p σ_p · G_ip, then per node
+/// Scatters the internal force f_i,int = −Σ_p V_p σ_p · G_ip, sums it over
+/// the layers of a contact group (`SharedLayers`), then per node
 /// f_i = f_ext + f_int, less grid damping α_g |f| sign(v) per component
 /// (Cundall 1987), p_i ← p_i + f_i Δt and v_i^{n+1} = p_i / m_i, constrained.
 ///
 /// Reads: `Grid`, `Settings`, `Clock`, `MaterialPoints` (volume, stress),
 /// `TransferScratch::stencils`, `GridLayer::nodes` (mass, external force, velocity).
-/// Writes: `TransferScratch::internal_force`, `GridLayer::nodes` (internal force, momentum, new velocity).
+/// Writes: `TransferScratch::internal_force`, `GridLayer::nodes` (internal force, momentum, new velocity),
+/// `SharedLayers` (scratch).
 pub fn solve_nodal_momentum(
     grid: Res<Grid>,
     settings: Res<Settings>,
     clock: Res<Clock>,
+    mut shared: ResMut<SharedLayers>,
     mut bodies: Query<(&MaterialPoints, &mut GridLayer, &mut TransferScratch)>,
 ) {
     let row_len = grid.nodes()[0];
@@ -34,6 +37,17 @@ pub fn solve_nodal_momentum(
             |(volume, stress), _, g| -*volume * stress.dot(g),
         );
         internal_force.add_into(&mut layer.nodes, row_len, |n, f| n.internal_force += f);
+    }
+    shared.share(
+        |entity, f| {
+            if let Ok((_, mut layer, _)) = bodies.get_mut(entity) {
+                f(&mut layer);
+            }
+        },
+        |sum, n| sum.internal_force += n.internal_force,
+        |n, sum| n.internal_force = sum.internal_force,
+    );
+    for (_, mut layer, _) in &mut bodies {
         let cutoff = layer.mass_cutoff;
         layer
             .nodes

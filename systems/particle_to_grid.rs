@@ -7,30 +7,38 @@ use crate::components::{
 use crate::contact::ForceApplication;
 use crate::math::DVec2;
 use crate::resources::{
-    Clock, ContactSettings, Diagnostics, Gravity, Grid, NumericalFailure, Settings,
+    Clock, ContactSettings, Diagnostics, Gravity, Grid, NumericalFailure, Settings, SharedLayers,
 };
 use crate::shape_functions::Stencil;
 use crate::transfer::MIN_NODES_PER_TASK;
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
+/// The resources P2G reads.
+type StepInputs<'w> = (
+    Res<'w, Grid>,
+    Res<'w, Settings>,
+    Res<'w, Gravity>,
+    Res<'w, ContactSettings>,
+    Res<'w, Clock>,
+);
+
 /// Computes every point's stencil at x^n, scatters S_ip m_p, S_ip m_p V_p and
 /// S_ip (m_p (g + b(t)) + f_p,ext [+ f_p,contact in `BodyForce` mode]) to
 /// the body's layer (b the body's own `BodyAcceleration`, if any, at the
-/// step's start time), and sets the nodal velocity,
+/// step's start time), makes the layers of a contact group their sum
+/// (`SharedLayers`), and sets the nodal velocity,
 /// constrained. A point whose support leaves the grid is reported as a
 /// numerical failure and contributes nothing.
 ///
 /// Reads: `Grid`, `Settings`, `Gravity`, `ContactSettings`, `Clock`, `BodyName`,
 /// `BodyAcceleration`, `MaterialPoints`.
-/// Writes: `TransferScratch`, `GridLayer::nodes` (mass, momentum, external force, velocity), `Diagnostics`.
+/// Writes: `TransferScratch`, `GridLayer::nodes` (mass, momentum, external force, velocity),
+/// `SharedLayers` (scratch), `Diagnostics`.
 pub fn particle_to_grid(
-    grid: Res<Grid>,
-    settings: Res<Settings>,
-    gravity: Res<Gravity>,
-    contact: Res<ContactSettings>,
-    clock: Res<Clock>,
+    (grid, settings, gravity, contact, clock): StepInputs,
     mut diagnostics: ResMut<Diagnostics>,
+    mut shared: ResMut<SharedLayers>,
     mut bodies: Query<(
         &BodyName,
         Option<&BodyAcceleration>,
@@ -85,6 +93,25 @@ pub fn particle_to_grid(
             n.momentum += t.momentum;
             n.external_force += t.external_force;
         });
+    }
+    shared.share(
+        |entity, f| {
+            if let Ok((.., mut layer, _)) = bodies.get_mut(entity) {
+                f(&mut layer);
+            }
+        },
+        |sum, n| {
+            sum.mass += n.mass;
+            sum.momentum += n.momentum;
+            sum.external_force += n.external_force;
+        },
+        |n, sum| {
+            n.mass = sum.mass;
+            n.momentum = sum.momentum;
+            n.external_force = sum.external_force;
+        },
+    );
+    for (.., mut layer, _) in &mut bodies {
         let cutoff = layer.mass_cutoff;
         layer
             .nodes

@@ -127,7 +127,10 @@ fn bad_body_contacts_are_refused() {
         .err()
         .expect("refused")
         .to_string();
-    assert!(message.contains("unknown body 'middle'"), "{message}");
+    assert!(
+        message.contains("unknown body or group 'middle'"),
+        "{message}"
+    );
     let mut scene = rings(true, true);
     scene.body_contacts[0].law.friction = -1.0;
     let message = Simulation::from_scene(&scene)

@@ -8,6 +8,7 @@ mod diagnostics;
 mod grid;
 mod records;
 mod settings;
+mod shared_layers;
 mod stages;
 
 pub use body_contacts::{BodyContacts, BodyPairContact, BodyPairLaw, PairSummary, law_between};
@@ -20,4 +21,5 @@ pub use records::{
     Probe, ProbeSample, Probes,
 };
 pub use settings::{Gravity, Settings, UpdateScheme};
+pub use shared_layers::SharedLayers;
 pub use stages::{AppliedLoad, StageEndReason, StageLog, StagePlan, StageRecord};

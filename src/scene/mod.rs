@@ -161,6 +161,12 @@ pub struct BodySpec {
     /// none.
     #[serde(default)]
     pub acceleration: Option<BodyAcceleration>,
+    /// Contact group: bodies with the same group share one grid layer and
+    /// act as one continuum through it (standard MPM: they stick where they
+    /// meet), and `body_contacts` may name the group for all its bodies.
+    /// Default: none, the body has a layer of its own.
+    #[serde(default)]
+    pub group: Option<String>,
 }
 
 /// A rigid block.
@@ -265,7 +271,7 @@ pub enum InitialStress {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BodyContactSpec {
-    /// The two bodies' names.
+    /// The two sides: each a body's name or a contact group's (all its bodies).
     pub between: (String, String),
     /// Stiffnesses (N/m per metre of thickness), friction and damping.
     pub law: ContactLaw,
@@ -401,6 +407,37 @@ impl Scene {
     /// Validates a scene built in code: every range rule and every reference.
     pub fn validate(&self) -> Result<(), SceneError> {
         self.validate_in(None)
+    }
+
+    /// The bodies (scene indices, ascending) that `name` stands for in
+    /// `body_contacts`: the body of that name, or the bodies of that contact
+    /// group; `None` when it is neither.
+    pub fn contact_members(&self, name: &str) -> Option<Vec<usize>> {
+        if let Some(i) = self.bodies.iter().position(|b| b.name == name) {
+            return Some(vec![i]);
+        }
+        let members: Vec<usize> = (0..self.bodies.len())
+            .filter(|&i| self.bodies[i].group.as_deref() == Some(name))
+            .collect();
+        (!members.is_empty()).then_some(members)
+    }
+
+    /// The contact groups with two or more bodies, as scene indices
+    /// (ascending), groups in the order of their first body.
+    pub fn shared_layers(&self) -> Vec<Vec<usize>> {
+        let mut groups: Vec<Vec<usize>> = Vec::new();
+        for (i, body) in self.bodies.iter().enumerate() {
+            let Some(group) = &body.group else { continue };
+            match groups
+                .iter_mut()
+                .find(|g| self.bodies[g[0]].group.as_ref() == Some(group))
+            {
+                Some(members) => members.push(i),
+                None => groups.push(vec![i]),
+            }
+        }
+        groups.retain(|g| g.len() > 1);
+        groups
     }
 
     /// The scene's name, or "scene" when it has none.

@@ -2,13 +2,13 @@
 
 use super::{InitialStress, InitialVelocity, Scene, SceneError, SourceLocation, VelocityField};
 use crate::components::{
-    BodyIndex, BodyName, GridLayer, Material, MaterialPoints, NewPoint, RegionConstraints,
-    StepTravel, TransferScratch,
+    BodyIndex, BodyName, GridLayer, Material, MaterialPoints, NewPoint, RegionConstraint,
+    RegionConstraints, StepTravel, TransferScratch,
 };
 use crate::math::{DVec2, Real, SymTensor};
 use crate::resources::{
     BlockLog, BodyContacts, BodyPairLaw, BodyPairLog, Clock, Diagnostics, EnergyLog, EnergySample,
-    Gravity, Grid, Probe, Probes, StageLog, StagePlan,
+    Gravity, Grid, Probe, Probes, SharedLayers, StageLog, StagePlan,
 };
 use bevy_ecs::prelude::*;
 
@@ -152,21 +152,23 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
     energy.samples.push(initial_energy);
     world.insert_resource(energy);
     world.insert_resource(StageLog::default());
-    let index_of = |name: &str| scene.bodies.iter().position(|b| b.name == name);
-    let mut laws: Vec<BodyPairLaw> = scene
-        .body_contacts
-        .iter()
-        .filter_map(|spec| {
-            let (i, j) = (index_of(&spec.between.0)?, index_of(&spec.between.1)?);
-            Some(BodyPairLaw {
-                a: i.min(j) as u32,
-                b: i.max(j) as u32,
-                law: spec.law,
-            })
-        })
-        .collect();
+    let mut laws: Vec<BodyPairLaw> = Vec::new();
+    for spec in &scene.body_contacts {
+        let members = |name: &str| scene.contact_members(name).unwrap_or_default();
+        for i in members(&spec.between.0) {
+            for j in members(&spec.between.1) {
+                laws.push(BodyPairLaw {
+                    a: i.min(j) as u32,
+                    b: i.max(j) as u32,
+                    law: spec.law,
+                });
+            }
+        }
+    }
     laws.sort_unstable_by_key(|l| (l.a, l.b));
     world.insert_resource(BodyPairLog::default());
+    let shared = share_layers(&mut world, &bodies, &scene.shared_layers());
+    world.insert_resource(shared);
     world.insert_resource(BodyContacts {
         laws,
         ..Default::default()
@@ -232,4 +234,37 @@ fn fill_body(
         });
     }
     Ok(points)
+}
+
+/// The contact groups' bodies: each member's layer gets the region
+/// constraints of the whole group and the group's smallest mass cutoff, so
+/// the shared copies stay equal.
+fn share_layers(world: &mut World, bodies: &[Entity], groups: &[Vec<usize>]) -> SharedLayers {
+    let groups: Vec<Vec<Entity>> = groups
+        .iter()
+        .map(|g| g.iter().map(|&i| bodies[i]).collect())
+        .collect();
+    for group in &groups {
+        let regions: Vec<RegionConstraint> = group
+            .iter()
+            .filter_map(|&e| world.get::<RegionConstraints>(e))
+            .flat_map(|r| r.0.iter().copied())
+            .collect();
+        let cutoff = group
+            .iter()
+            .filter_map(|&e| world.get::<GridLayer>(e))
+            .map(|l| l.mass_cutoff)
+            .fold(Real::INFINITY, Real::min);
+        for &member in group {
+            let mut entity = world.entity_mut(member);
+            entity.insert(RegionConstraints(regions.clone()));
+            if let Some(mut layer) = entity.get_mut::<GridLayer>() {
+                layer.mass_cutoff = cutoff;
+            }
+        }
+    }
+    SharedLayers {
+        groups,
+        total: Vec::new(),
+    }
 }
