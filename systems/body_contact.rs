@@ -1,10 +1,14 @@
 //! Algorithm 1, line 9 for bodies against bodies (paper section 3.3).
 
 use crate::components::{BodyIndex, MaterialPoints, sort_into_scene_order};
-use crate::contact::pair_force;
-use crate::math::DVec2;
-use crate::resources::{BodyContacts, BodyPairContact, Clock, Grid, law_between};
+use crate::contact::{ContactLaw, pair_force};
+use crate::math::{DVec2, Real};
+use crate::resources::{
+    BodyContacts, BodyPairContact, BodyPairLaw, Clock, Grid, MAX_CONTACT_BODIES, law_between,
+};
+use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
+use rayon::prelude::*;
 
 /// Nonrigid–nonrigid DEM contacts. Each body keeps its own layer; contact is
 /// sought only where the bodies meet: every cell is marked with the bodies
@@ -18,6 +22,12 @@ use bevy_ecs::prelude::*;
 /// (V + L (x_c − x) for each), the tangential spring kept per pair while in
 /// contact. Equal and opposite forces go to the two points' `contact_force`,
 /// pairs in (body, point, body, point) order.
+///
+/// The cost grows with the points (one cell lookup each) and the candidates
+/// near other bodies, not with the pairs of bodies or the grid. The cell
+/// lookups, the candidate search and the disk tests run in parallel over
+/// fixed chunks whose buffers are reused; the sorted outputs make the result
+/// independent of the thread count.
 ///
 /// Reads: `Grid`, `Clock`, `BodyIndex`, `MaterialPoints` (position,
 /// velocity, velocity gradient, contact radius). Writes: `BodyContacts`,
@@ -33,127 +43,111 @@ pub fn compute_body_contacts(
         return;
     }
     sort_into_scene_order(&mut order, bodies.iter().map(|(e, i, _)| (*i, e)));
-    let [nx, ny] = grid.cells;
-    let cell_of = |x: DVec2| {
-        let c = ((x - grid.origin) / grid.cell_size).floor();
-        let i = (c.x.max(0.0) as usize).min(nx - 1);
-        let j = (c.y.max(0.0) as usize).min(ny - 1);
-        (i, j)
-    };
+    let cells = CellIndex::new(&grid);
     let BodyContacts {
         laws,
         current,
         previous,
         cell_bodies,
+        point_cells,
         candidates,
+        chunks,
     } = &mut *contacts;
     std::mem::swap(previous, current);
     current.clear();
+    // The bodies' points in scene order (at most MAX bodies: the cell masks
+    // have one bit per body).
+    let mut points: [Option<&MaterialPoints>; MAX_CONTACT_BODIES] = [None; MAX_CONTACT_BODIES];
+    for (slot, (_, entity)) in points.iter_mut().zip(order.iter()) {
+        *slot = bodies.get(*entity).ok().map(|(_, _, p)| p);
+    }
+    let points = &points[..order.len().min(MAX_CONTACT_BODIES)];
+
+    // Each point's cell (in parallel), then every cell marked with the
+    // bodies whose points lie in it.
+    point_cells.resize_with(points.len(), Vec::new);
     cell_bodies.clear();
-    cell_bodies.resize(nx * ny, 0);
-    for (index, entity) in order.iter() {
-        let Ok((_, _, points)) = bodies.get(*entity) else {
-            continue;
-        };
-        for x in &points.position {
-            let (i, j) = cell_of(*x);
-            cell_bodies[j * nx + i] |= 1 << index.0;
+    cell_bodies.resize(cells.count(), 0);
+    for (k, body) in points.iter().enumerate() {
+        let Some(body) = body else { continue };
+        let own = &mut point_cells[k];
+        own.resize(body.len(), 0);
+        own.par_iter_mut()
+            .zip(body.position.par_iter())
+            .with_min_len(MIN_POINTS_PER_TASK)
+            .for_each(|(cell, x)| *cell = cells.of(*x) as u32);
+        for &cell in own.iter() {
+            cell_bodies[cell as usize] |= 1 << k;
         }
     }
-    // The bodies each body has a law with.
-    let partners = |k: u32| {
-        laws.iter().fold(0u64, |m, l| {
-            if l.a == k {
-                m | 1 << l.b
-            } else if l.b == k {
-                m | 1 << l.a
-            } else {
-                m
-            }
-        })
-    };
-    let around = |i: usize, j: usize| {
-        let mut mask = 0;
-        for jj in j.saturating_sub(1)..=(j + 1).min(ny - 1) {
-            for ii in i.saturating_sub(1)..=(i + 1).min(nx - 1) {
-                mask |= cell_bodies[jj * nx + ii];
-            }
-        }
-        mask
-    };
+    let marks: &[u64] = cell_bodies;
+
+    // Candidates: points with a body they have a law with in their 3 x 3
+    // cells, gathered per chunk of points, then sorted by (cell, body, point).
     candidates.clear();
-    for (index, entity) in order.iter() {
-        let wanted = partners(index.0);
-        if wanted == 0 {
+    chunks.resize_with(CHUNKS, Default::default);
+    for (k, own) in point_cells.iter().enumerate() {
+        let wanted = partners(laws, k as u32);
+        if wanted == 0 || points[k].is_none() {
             continue;
         }
-        let Ok((_, _, points)) = bodies.get(*entity) else {
-            continue;
-        };
-        for (p, x) in points.position.iter().enumerate() {
-            let (i, j) = cell_of(*x);
-            if around(i, j) & wanted != 0 {
-                candidates.push(((j * nx + i) as u32, index.0, p as u32));
+        let per_chunk = own.len().div_ceil(CHUNKS).max(1);
+        chunks.par_iter_mut().enumerate().for_each(|(c, chunk)| {
+            chunk.candidates.clear();
+            let range = (c * per_chunk).min(own.len())..((c + 1) * per_chunk).min(own.len());
+            for p in range {
+                let cell = own[p] as usize;
+                if cells.mask_around(marks, cell) & wanted != 0 {
+                    chunk.candidates.push((cell as u32, k as u32, p as u32));
+                }
             }
+        });
+        for chunk in chunks.iter() {
+            candidates.extend_from_slice(&chunk.candidates);
         }
     }
     candidates.sort_unstable();
+
+    // Disk–disk tests of each candidate against the candidates of bodies
+    // after it in its 3 x 3 cells; every pair is found once, from its lower
+    // body. Chunks of candidates run in parallel; the contacts are sorted by
+    // key afterwards, so the result does not depend on the split.
     let dt = clock.dt;
-    for &(cell, a, p) in candidates.iter() {
-        let (i, j) = (cell as usize % nx, cell as usize / nx);
-        let Ok((_, _, first)) = bodies.get(order[a as usize].1) else {
-            continue;
-        };
-        let (xp, rp) = (first.position[p as usize], first.contact_radius[p as usize]);
-        for jj in j.saturating_sub(1)..=(j + 1).min(ny - 1) {
-            for ii in i.saturating_sub(1)..=(i + 1).min(nx - 1) {
-                let near = (jj * nx + ii) as u32;
-                let start = candidates.partition_point(|c| c.0 < near);
-                for &(_, b, q) in candidates[start..].iter().take_while(|c| c.0 == near) {
+    let candidates: &[(u32, u32, u32)] = candidates;
+    let previous: &[BodyPairContact] = previous;
+    let per_chunk = candidates.len().div_ceil(CHUNKS).max(1);
+    chunks.par_iter_mut().enumerate().for_each(|(c, chunk)| {
+        chunk.contacts.clear();
+        let range =
+            (c * per_chunk).min(candidates.len())..((c + 1) * per_chunk).min(candidates.len());
+        for &(cell, a, p) in &candidates[range] {
+            let Some(first) = points[a as usize] else {
+                continue;
+            };
+            for row in cells.rows_around(cell as usize) {
+                let start = candidates.partition_point(|c| (c.0 as usize) < row.start);
+                for &(_, b, q) in candidates[start..]
+                    .iter()
+                    .take_while(|c| (c.0 as usize) < row.end)
+                {
                     if b <= a {
                         continue;
                     }
-                    let Some(&law) = law_between(laws, a, b) else {
+                    let (Some(&law), Some(second)) = (law_between(laws, a, b), points[b as usize])
+                    else {
                         continue;
                     };
-                    let Ok((_, _, second)) = bodies.get(order[b as usize].1) else {
-                        continue;
-                    };
-                    let (xq, rq) = (
-                        second.position[q as usize],
-                        second.contact_radius[q as usize],
-                    );
-                    let gap = xp - xq;
-                    let distance = gap.length();
-                    let overlap = rp + rq - distance;
-                    if overlap <= 0.0 || distance == 0.0 {
-                        continue;
+                    if let Some(contact) =
+                        disk_pair(&law, (a, first, p), (b, second, q), previous, dt)
+                    {
+                        chunk.contacts.push(contact);
                     }
-                    let normal = gap / distance;
-                    let at = xq + normal * (rq - 0.5 * overlap);
-                    let material = |points: &MaterialPoints, k: usize| {
-                        points.velocity[k] + points.velocity_gradient[k] * (at - points.position[k])
-                    };
-                    let relative = material(first, p as usize) - material(second, q as usize);
-                    let key = (a, p, b, q);
-                    let carried = previous
-                        .binary_search_by(|c| c.key().cmp(&key))
-                        .map_or(DVec2::ZERO, |k| previous[k].tangential);
-                    let f = pair_force(&law, overlap, normal, relative, carried, dt);
-                    current.push(BodyPairContact {
-                        a,
-                        p,
-                        b,
-                        q,
-                        force: f.force,
-                        tangential: f.tangential,
-                        overlap,
-                        at,
-                        radius: 0.5 * (rp + rq),
-                    });
                 }
             }
         }
+    });
+    for chunk in chunks.iter() {
+        current.extend_from_slice(&chunk.contacts);
     }
     current.sort_unstable_by_key(BodyPairContact::key);
     for contact in current.iter() {
@@ -165,5 +159,122 @@ pub fn compute_body_contacts(
                 points.contact_force[point as usize] += force;
             }
         }
+    }
+}
+
+/// Chunks the detection's loops are split into: enough to balance the
+/// cores, few enough that each chunk's buffer is reused step after step.
+const CHUNKS: usize = 16;
+
+/// The bodies `body` has a law with, one bit per body.
+fn partners(laws: &[BodyPairLaw], body: u32) -> u64 {
+    laws.iter().fold(0u64, |mask, l| {
+        if l.a == body {
+            mask | 1 << l.b
+        } else if l.b == body {
+            mask | 1 << l.a
+        } else {
+            mask
+        }
+    })
+}
+
+/// Eq. 18 between point `p` of body `a` and point `q` of body `b` (a < b)
+/// if their disks overlap: the normal from q to p, δ the overlap, the
+/// materials' velocities at the middle of the overlap, the pair's
+/// tangential spring from `previous` (sorted by key).
+fn disk_pair(
+    law: &ContactLaw,
+    (a, first, p): (u32, &MaterialPoints, u32),
+    (b, second, q): (u32, &MaterialPoints, u32),
+    previous: &[BodyPairContact],
+    dt: Real,
+) -> Option<BodyPairContact> {
+    let (xp, rp) = (first.position[p as usize], first.contact_radius[p as usize]);
+    let (xq, rq) = (
+        second.position[q as usize],
+        second.contact_radius[q as usize],
+    );
+    let gap = xp - xq;
+    let distance = gap.length();
+    let overlap = rp + rq - distance;
+    if overlap <= 0.0 || distance == 0.0 {
+        return None;
+    }
+    let normal = gap / distance;
+    let at = xq + normal * (rq - 0.5 * overlap);
+    let material = |points: &MaterialPoints, k: u32| {
+        let k = k as usize;
+        points.velocity[k] + points.velocity_gradient[k] * (at - points.position[k])
+    };
+    let relative = material(first, p) - material(second, q);
+    let key = (a, p, b, q);
+    let carried = previous
+        .binary_search_by(|c| c.key().cmp(&key))
+        .map_or(DVec2::ZERO, |k| previous[k].tangential);
+    let f = pair_force(law, overlap, normal, relative, carried, dt);
+    Some(BodyPairContact {
+        a,
+        p,
+        b,
+        q,
+        force: f.force,
+        tangential: f.tangential,
+        overlap,
+        at,
+        radius: 0.5 * (rp + rq),
+    })
+}
+
+/// Row-major cells of the grid: the cell of a position (clamped to the
+/// grid) and the cells around a cell.
+struct CellIndex {
+    origin: DVec2,
+    inverse_size: Real,
+    nx: usize,
+    ny: usize,
+}
+
+impl CellIndex {
+    fn new(grid: &Grid) -> Self {
+        Self {
+            origin: grid.origin,
+            inverse_size: 1.0 / grid.cell_size,
+            nx: grid.cells[0],
+            ny: grid.cells[1],
+        }
+    }
+
+    fn count(&self) -> usize {
+        self.nx * self.ny
+    }
+
+    fn of(&self, x: DVec2) -> usize {
+        // Truncation is the floor for c ≥ 0, and below 0 both clamp to 0.
+        let c = (x - self.origin) * self.inverse_size;
+        let i = (c.x.max(0.0) as usize).min(self.nx - 1);
+        let j = (c.y.max(0.0) as usize).min(self.ny - 1);
+        j * self.nx + i
+    }
+
+    /// The cells of the 3 x 3 block around `cell` (fewer at the edges), as
+    /// one range of row-major indices per row.
+    fn rows_around(&self, cell: usize) -> impl Iterator<Item = std::ops::Range<usize>> {
+        let (i, j) = (cell % self.nx, cell / self.nx);
+        let (low, high) = (i.saturating_sub(1), (i + 1).min(self.nx - 1));
+        let nx = self.nx;
+        (j.saturating_sub(1)..=(j + 1).min(self.ny - 1))
+            .map(move |row| row * nx + low..row * nx + high + 1)
+    }
+
+    /// The OR of `marks` over the 3 x 3 block around `cell`.
+    fn mask_around(&self, marks: &[u64], cell: usize) -> u64 {
+        let mut mask = 0;
+        for row in self.rows_around(cell) {
+            for m in &marks[row] {
+                mask |= m;
+            }
+        }
+        mask
     }
 }

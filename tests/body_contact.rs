@@ -138,4 +138,11 @@ fn bad_body_contacts_are_refused() {
         .expect("refused")
         .to_string();
     assert!(message.contains("friction must be ≥ 0"), "{message}");
+    let mut scene = rings(true, true);
+    scene.bodies[1].contact_radius = Some(scene.grid.cell_size);
+    let message = Simulation::from_scene(&scene)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(message.contains("more than half a cell"), "{message}");
 }

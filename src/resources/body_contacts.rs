@@ -60,9 +60,26 @@ pub struct BodyContacts {
     pub previous: Vec<BodyPairContact>,
     /// Bodies present in each cell, one bit per body index.
     pub cell_bodies: Vec<u64>,
+    /// Each body's points' cells (row-major index), bodies in scene order.
+    pub point_cells: Vec<Vec<u32>>,
     /// Points next to another body: (cell, body, point), sorted.
     pub candidates: Vec<(u32, u32, u32)>,
+    /// Per-chunk buffers of the parallel detection, reused every step.
+    pub chunks: Vec<DetectionChunk>,
 }
+
+/// One chunk's output of the parallel detection.
+#[derive(Clone, Debug, Default)]
+pub struct DetectionChunk {
+    /// Candidates found in this chunk of points: (cell, body, point).
+    pub candidates: Vec<(u32, u32, u32)>,
+    /// Contacts found from this chunk of candidates.
+    pub contacts: Vec<BodyPairContact>,
+}
+
+/// Most bodies a scene with body contacts may have: the detection marks
+/// each cell's bodies in a 64-bit mask.
+pub const MAX_CONTACT_BODIES: usize = 64;
 
 /// The law between bodies `i` and `j` in `laws` (sorted by (a, b)), if any.
 pub fn law_between(laws: &[BodyPairLaw], i: u32, j: u32) -> Option<&ContactLaw> {

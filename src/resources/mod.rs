@@ -11,7 +11,10 @@ mod settings;
 mod shared_layers;
 mod stages;
 
-pub use body_contacts::{BodyContacts, BodyPairContact, BodyPairLaw, PairSummary, law_between};
+pub use body_contacts::{
+    BodyContacts, BodyPairContact, BodyPairLaw, DetectionChunk, MAX_CONTACT_BODIES, PairSummary,
+    law_between,
+};
 pub use clock::Clock;
 pub use contact_settings::{BlockContactHistory, BlockContactKey, ContactSettings, Penetration};
 pub use diagnostics::{Diagnostics, NumericalFailure};

@@ -6,16 +6,13 @@ use super::{
 };
 use crate::components::RigidVelocity;
 use crate::contact::ForceApplication;
+use crate::resources::MAX_CONTACT_BODIES;
 use std::collections::BTreeSet;
 use std::path::Path;
 
 /// Largest points-per-cell count: 8 × 8 = 64 points per cell is already far
 /// beyond what MPM accuracy gains from; larger counts are almost surely typos.
 const MAX_POINTS_PER_CELL: u32 = 8;
-
-/// Most bodies of a scene with body contacts: the detection marks each
-/// cell's bodies in a 64-bit mask.
-const MAX_CONTACT_BODIES: usize = 64;
 
 /// Most nodes a grid may have: 5e7 nodes make an 4.4 GB layer per body (88
 /// bytes a node), beyond what a 2D run on one machine can use; node indices
@@ -435,6 +432,22 @@ impl Scene {
                     format!("body_contacts ('{a}', '{b}'): {e}"),
                 )
             })?;
+        }
+        if !self.body_contacts.is_empty()
+            && let Some(b) = self
+                .bodies
+                .iter()
+                .find(|b| b.contact_radius.is_some_and(|r| r > 0.5 * grid.cell_size))
+        {
+            return Err(invalid(
+                &["bodies", &quoted(&b.name), "contact_radius"],
+                format!(
+                    "body '{}': contact_radius {} is more than half a cell ({}): body contacts look for overlapping disks in neighbouring cells only",
+                    b.name,
+                    b.contact_radius.unwrap_or_default(),
+                    0.5 * grid.cell_size
+                ),
+            ));
         }
         if !self.body_contacts.is_empty() && self.bodies.len() > MAX_CONTACT_BODIES {
             return Err(invalid(
