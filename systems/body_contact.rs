@@ -65,9 +65,19 @@ pub fn compute_body_contacts(
 
     // Each point's cell (in parallel), then every cell marked with the
     // bodies whose points lie in it.
+    // Only last step's marks are cleared, so the cost follows the points,
+    // not the grid (the marks are sized once, or again when the grid changes).
     point_cells.resize_with(points.len(), Vec::new);
-    cell_bodies.clear();
-    cell_bodies.resize(cells.count(), 0);
+    if cell_bodies.len() == cells.count() {
+        for own in point_cells.iter() {
+            for &cell in own {
+                cell_bodies[cell as usize] = 0;
+            }
+        }
+    } else {
+        cell_bodies.clear();
+        cell_bodies.resize(cells.count(), 0);
+    }
     for (k, body) in points.iter().enumerate() {
         let Some(body) = body else { continue };
         let own = &mut point_cells[k];
