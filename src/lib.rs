@@ -7,7 +7,8 @@
 //! The engine is an entity-component-system program on `bevy_ecs`:
 //! * a deformable body is an entity with its points as columns
 //!   ([`components::MaterialPoints`]), its [`components::Material`] and its
-//!   own [`components::GridLayer`];
+//!   own [`components::GridLayer`] (shared, as a summed copy, with the other
+//!   bodies of its contact group, if any);
 //! * the grid, clock, settings and records are [`resources`];
 //! * the time step is the [`systems::MpmSchedule`], whose
 //!   [`systems::MpmSystems`] sets follow Algorithm 1 of the paper, and into

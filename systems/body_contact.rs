@@ -1,6 +1,6 @@
 //! Algorithm 1, line 9 for bodies against bodies (paper section 3.3).
 
-use crate::components::{BodyIndex, MaterialPoints, sort_into_scene_order};
+use crate::components::{BodyIndex, MaterialPoints};
 use crate::contact::{ContactLaw, pair_force};
 use crate::math::{DVec2, Real};
 use crate::resources::{
@@ -15,8 +15,8 @@ use rayon::prelude::*;
 /// whose points lie in it, a point is a candidate when a body it has a law
 /// with lies in its cell or the eight around it (the cells whose nodes carry
 /// the mass of both layers), and candidates of different bodies in
-/// neighbouring cells are tested disk against disk (a disk is at most half
-/// a cell wide, so overlapping disks are never further apart). Each overlap
+/// neighbouring cells are tested disk against disk (a disk's radius is at
+/// most half a cell, so overlapping disks are never further apart). Each overlap
 /// gets eq. 18 with the pair's law: the normal from q to p, δ the overlap,
 /// the relative velocity of the two materials at the contact point
 /// (V + L (x_c − x) for each), the tangential spring kept per pair while in
@@ -36,13 +36,11 @@ pub fn compute_body_contacts(
     grid: Res<Grid>,
     clock: Res<Clock>,
     mut contacts: ResMut<BodyContacts>,
-    mut order: Local<Vec<(BodyIndex, Entity)>>,
     mut bodies: Query<(Entity, &BodyIndex, &mut MaterialPoints)>,
 ) {
     if contacts.laws.is_empty() {
         return;
     }
-    sort_into_scene_order(&mut order, bodies.iter().map(|(e, i, _)| (*i, e)));
     let cells = CellIndex::new(&grid);
     let BodyContacts {
         laws,
@@ -55,19 +53,27 @@ pub fn compute_body_contacts(
     } = &mut *contacts;
     std::mem::swap(previous, current);
     current.clear();
-    // The bodies' points in scene order (at most MAX bodies: the cell masks
-    // have one bit per body).
-    let mut points: [Option<&MaterialPoints>; MAX_CONTACT_BODIES] = [None; MAX_CONTACT_BODIES];
-    for (slot, (_, entity)) in points.iter_mut().zip(order.iter()) {
-        *slot = bodies.get(*entity).ok().map(|(_, _, p)| p);
+    // Each body's points and entity at its scene index, which the laws and
+    // the one-bit-per-body cell marks use (at most MAX bodies take part; a
+    // body a user has removed leaves its slot empty).
+    let mut slots: [Option<(Entity, &MaterialPoints)>; MAX_CONTACT_BODIES] =
+        [None; MAX_CONTACT_BODIES];
+    for (entity, index, points) in bodies.iter() {
+        if let Some(slot) = slots.get_mut(index.0 as usize) {
+            *slot = Some((entity, points));
+        }
     }
-    let points = &points[..order.len().min(MAX_CONTACT_BODIES)];
+    let used = slots.iter().rposition(Option::is_some).map_or(0, |k| k + 1);
+    let mut points: [Option<&MaterialPoints>; MAX_CONTACT_BODIES] = [None; MAX_CONTACT_BODIES];
+    for (point_slot, slot) in points.iter_mut().zip(&slots) {
+        *point_slot = slot.map(|(_, p)| p);
+    }
+    let points = &points[..used];
 
     // Each point's cell (in parallel), then every cell marked with the
-    // bodies whose points lie in it.
-    // Only last step's marks are cleared, so the cost follows the points,
-    // not the grid (the marks are sized once, or again when the grid changes).
-    point_cells.resize_with(points.len(), Vec::new);
+    // bodies whose points lie in it. Only last step's marks are cleared, so
+    // the cost follows the points, not the grid (the marks are sized once,
+    // or again when the grid changes).
     if cell_bodies.len() == cells.count() {
         for own in point_cells.iter() {
             for &cell in own {
@@ -78,9 +84,12 @@ pub fn compute_body_contacts(
         cell_bodies.clear();
         cell_bodies.resize(cells.count(), 0);
     }
-    for (k, body) in points.iter().enumerate() {
-        let Some(body) = body else { continue };
-        let own = &mut point_cells[k];
+    point_cells.resize_with(points.len(), Vec::new);
+    for (k, (own, body)) in point_cells.iter_mut().zip(points).enumerate() {
+        let Some(body) = body else {
+            own.clear();
+            continue;
+        };
         own.resize(body.len(), 0);
         own.par_iter_mut()
             .zip(body.position.par_iter())
@@ -160,12 +169,15 @@ pub fn compute_body_contacts(
         current.extend_from_slice(&chunk.contacts);
     }
     current.sort_unstable_by_key(BodyPairContact::key);
+    let entities = slots.map(|slot| slot.map(|(entity, _)| entity));
     for contact in current.iter() {
         for (body, point, force) in [
             (contact.a, contact.p, contact.force),
             (contact.b, contact.q, -contact.force),
         ] {
-            if let Ok((_, _, mut points)) = bodies.get_mut(order[body as usize].1) {
+            if let Some(entity) = entities[body as usize]
+                && let Ok((_, _, mut points)) = bodies.get_mut(entity)
+            {
                 points.contact_force[point as usize] += force;
             }
         }

@@ -185,6 +185,7 @@ fn hertz_disks_follow_the_2d_hertz_law_and_converge() {
     // equal load (a grows with the load, F does not always grow with a),
     // squared as F ∝ a², so the difference counts as one in F at equal a.
     let finest = &curves[3].samples;
+    assert!(finest.len() >= 2, "the finest run has no loading curve");
     let width_at = |f: Real| {
         let k = finest
             .partition_point(|s| s.1 < f)
@@ -263,4 +264,14 @@ fn plot(runs: &[Resolution], curves: &[LoadingCurve]) {
     )
     .expect("plot");
     println!("plot: {}", path.display());
+}
+
+#[test]
+fn a_non_finite_body_acceleration_is_refused() {
+    let mut scene = common::load_scene("hertz_disks.ron");
+    if let Some(load) = scene.bodies[0].acceleration.as_mut() {
+        load.value.x = Real::INFINITY;
+    }
+    let message = scene.validate().expect_err("refused").to_string();
+    assert!(message.contains("acceleration must be finite"), "{message}");
 }

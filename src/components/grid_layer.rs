@@ -52,7 +52,9 @@ pub struct NodeConstraint {
 }
 
 /// One body's layer: every node of the grid, row-major (index j × nx + i).
-/// Layers never exchange momentum; bodies meet only through contact.
+/// Layers never exchange momentum; bodies meet only through contact, except
+/// the bodies of one contact group, whose copies of the layer are summed
+/// after every scatter ([`crate::resources::SharedLayers`]).
 #[derive(Component, Clone, Debug, Default)]
 pub struct GridLayer {
     /// Nodal quantities.

@@ -90,7 +90,9 @@ pub fn law_between(laws: &[BodyPairLaw], i: u32, j: u32) -> Option<&ContactLaw> 
 }
 
 /// The contacts between two bodies summed up: the resultant and the width
-/// of the zone they cover.
+/// of the zone they cover. The widths assume one contact zone, measured
+/// across the resultant; for bodies touching on opposite sides (a resultant
+/// near zero) they mean nothing.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PairSummary {
     /// Resultant force on the lower-index body (N/m).

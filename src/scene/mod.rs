@@ -164,7 +164,9 @@ pub struct BodySpec {
     /// Contact group: bodies with the same group share one grid layer and
     /// act as one continuum through it (standard MPM: they stick where they
     /// meet), and `body_contacts` may name the group for all its bodies.
-    /// Default: none, the body has a layer of its own.
+    /// The members' region `constraints` then hold for the whole group, and
+    /// the group uses its members' smallest node mass cutoff. Default: none,
+    /// the body has a layer of its own.
     #[serde(default)]
     pub group: Option<String>,
 }

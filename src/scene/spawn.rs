@@ -166,7 +166,10 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         }
     }
     laws.sort_unstable_by_key(|l| (l.a, l.b));
-    world.insert_resource(BodyPairLog::default());
+    // Room for every sample, as for the probes: recording never allocates.
+    world.insert_resource(BodyPairLog {
+        samples: Vec::with_capacity(samples * laws.len()),
+    });
     let shared = share_layers(&mut world, &bodies, &scene.shared_layers());
     world.insert_resource(shared);
     world.insert_resource(BodyContacts {

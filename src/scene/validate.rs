@@ -124,6 +124,17 @@ impl Scene {
                     format!("body name '{}' is used twice", b.name),
                 ));
             }
+            if let Some(load) = b.acceleration
+                && !(load.value.is_finite() && load.ramp_time.is_finite() && load.ramp_time >= 0.0)
+            {
+                return Err(fail(
+                    "acceleration",
+                    format!(
+                        "body '{}': acceleration must be finite with ramp_time ≥ 0, got {} over {} s",
+                        b.name, load.value, load.ramp_time
+                    ),
+                ));
+            }
             if !material_names.contains(b.material.as_str()) {
                 return Err(fail(
                     "material",
