@@ -3,7 +3,7 @@
 
 use crate::components::{GridLayer, MaterialPoints, StepTravel, TransferScratch, XpicScratch};
 use crate::math::{DVec2, Real, local_damping};
-use crate::resources::{Clock, Grid, Settings};
+use crate::resources::{Clock, Grid, PositionUpdate, Settings};
 use crate::shape_functions::Stencil;
 use crate::transfer::{MIN_NODES_PER_TASK, MIN_POINTS_PER_TASK};
 use bevy_ecs::prelude::*;
@@ -13,7 +13,8 @@ use rayon::prelude::*;
 /// and the point's acceleration a_p Δt = v^{n+1} − v^n, less particle
 /// damping α_p |a_p| sign(V^n) per component:
 /// * eq. 11a: V^{n+1} = (1 − β)(V^n + a_p Δt) + β (v^n + a_p Δt);
-/// * eq. 11b: x^{n+1} = x^n + ½(v^n + v^{n+1}) Δt − ½ β (V^n − v^n) Δt;
+/// * eq. 11b: x^{n+1} = x^n + ½(v^n + v^{n+1}) Δt − ½ β (V^n − v^n) Δt, or
+///   with `PositionUpdate::Forward`, x^{n+1} = x^n + v^{n+1} Δt;
 ///
 /// or, with an XPIC order m (eq. 12), v* = Σ_{k=1..m} (−1)^{k+1} C(m, k) u_k
 /// on the nodes, u_1 = v_i^n and u_k = S⁺ S u_{k−1} (interpolated to the
@@ -45,6 +46,7 @@ pub fn grid_to_particle(
     let row_len = grid.nodes()[0];
     let (lo, hi) = grid.wall_bounds();
     let (dt, beta, alpha) = (clock.dt, settings.pic_fraction, settings.particle_damping);
+    let forward = settings.position_update == PositionUpdate::Forward;
     for (mut points, mut travel, layer, mut scratch) in &mut bodies {
         let TransferScratch { stencils, xpic, .. } = &mut *scratch;
         let order = settings.xpic_order.unwrap_or(0);
@@ -79,7 +81,11 @@ pub fn grid_to_particle(
                     *v = next;
                     step
                 } else {
-                    let step = (0.5 * (grid_old + grid_new) - 0.5 * beta * (*v - grid_old)) * dt;
+                    let step = if forward {
+                        grid_new * dt
+                    } else {
+                        (0.5 * (grid_old + grid_new) - 0.5 * beta * (*v - grid_old)) * dt
+                    };
                     // Undamped, v^n + a_p Δt is v^{n+1} itself (kept exact).
                     let pic = if alpha == 0.0 {
                         grid_new
