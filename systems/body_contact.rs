@@ -64,10 +64,7 @@ pub fn compute_body_contacts(
         }
     }
     let used = slots.iter().rposition(Option::is_some).map_or(0, |k| k + 1);
-    let mut points: [Option<&MaterialPoints>; MAX_CONTACT_BODIES] = [None; MAX_CONTACT_BODIES];
-    for (point_slot, slot) in points.iter_mut().zip(&slots) {
-        *point_slot = slot.map(|(_, p)| p);
-    }
+    let points = slots.map(|slot| slot.map(|(_, p)| p));
     let points = &points[..used];
 
     // Each point's cell (in parallel), then every cell marked with the

@@ -78,14 +78,19 @@ impl Resolution {
 }
 
 /// The recorded (a, F) pairs of a run, a from the spread of the contact
-/// forces, and the last sample's force.
+/// forces, the last sample's force, and the body force applied to the left
+/// disk at the end of the ramp.
 struct LoadingCurve {
     samples: Vec<(Real, Real)>,
     final_force: DVec2,
+    applied: DVec2,
 }
 
 fn load_to_the_end(resolution: Resolution) -> LoadingCurve {
-    let sim = common::run_scene(&resolution.scene());
+    let scene = resolution.scene();
+    let mut sim = common::run_scene(&scene);
+    let disk_mass: Real = sim.points_of("left").expect("left").mass.iter().sum();
+    let applied = disk_mass * scene.bodies[0].acceleration.expect("load").value;
     let log = sim.world().resource::<BodyPairLog>();
     let samples = log
         .samples
@@ -97,6 +102,7 @@ fn load_to_the_end(resolution: Resolution) -> LoadingCurve {
     LoadingCurve {
         samples,
         final_force,
+        applied,
     }
 }
 
@@ -123,13 +129,7 @@ fn coarse_disks_carry_the_applied_load_along_the_line_of_centres() {
         angle: 0.0,
     };
     let curve = load_to_the_end(resolution);
-    let scene = resolution.scene();
-    let sim = Simulation::from_scene(&scene).expect("scene");
-    let disk_mass: Real = {
-        let mut sim = sim;
-        sim.points_of("left").expect("left").mass.iter().sum()
-    };
-    let applied = disk_mass * scene.bodies[0].acceleration.expect("load").value;
+    let applied = curve.applied;
     let (error, count) = hertz_error(&curve);
     println!(
         "R/20, 1 pt/cell: contact force {:.4e} N/m for an applied {:.4e}; F(a) error {:.1}% over {count} samples",
