@@ -88,12 +88,74 @@ fn colliding_rings_rebound_and_stay_whole() {
 }
 
 #[test]
-#[ignore = "the energy target of the issue is not met (measured -8.3%: friction mu = 0.2 dissipates)"]
+#[ignore = "the energy target of the issue is not met (measured -8.3%: friction on interlocked surface points dissipates, see the stiff-spring test)"]
 fn full_two_rings_conserve_energy_within_five_percent() {
     let drift = energy_drift(&common::run_scene(&rings(false, true)));
     println!("two rings: energy drift {:+.2}%", 100.0 * drift);
     // Target of the issue: at most 5% over 3.8 ms.
     assert!(drift.abs() <= 0.05, "drift {drift}");
+}
+
+/// Runs a scene to its end and returns it with the mean |n_y| of its
+/// body-contact normals, weighted by the normal force, over all steps
+/// (0 for normals along the line of centres, x; about 0.7 at 45°).
+fn run_measuring_normals(scene: &Scene) -> (Simulation, Real) {
+    let mut sim = Simulation::from_scene(scene).unwrap_or_else(|e| panic!("{e}"));
+    let (mut across, mut total) = (0.0, 0.0);
+    while !sim.clock().finished() {
+        sim.step().unwrap_or_else(|e| panic!("{e}"));
+        let contacts = sim.world().resource::<mpdem::resources::BodyContacts>();
+        for c in &contacts.current {
+            let normal = c.force - c.tangential;
+            across += normal.y.abs();
+            total += normal.length();
+        }
+    }
+    (sim, across / total)
+}
+
+#[test]
+#[ignore = "the full scene twice, 1 minute: why the energy target is missed"]
+fn stiffer_springs_keep_the_rings_surfaces_apart_and_their_energy() {
+    // The impact pressure, about ρ c v = 1010 × 394 × 30 = 1.2e7 Pa, puts
+    // 9.5e3 N/m on each pair of surface points (one per 0.8 mm): the
+    // paper's k_n = 1e7 N/m² would need an overlap above a disk's diameter.
+    // So the surface points pass between each other and interlock, rows
+    // deep, with normals far from the line of centres, and the μ = 0.2
+    // friction on those pairs dissipates. Ten times stiffer springs keep
+    // the surfaces apart: fewer pairs, normals closer to the line of
+    // centres, and the energy within the issue's 5%. Measured: 231 pairs
+    // at most, mean |n_y| 0.70, drift −8.3% with the paper's springs;
+    // 44 pairs, 0.43 and −1.9% with the stiff ones.
+    let peak_contacts = |sim: &Simulation| {
+        sim.world()
+            .resource::<mpdem::resources::BodyPairLog>()
+            .samples
+            .iter()
+            .map(|s| s.summary.contacts)
+            .max()
+            .unwrap_or(0)
+    };
+    let (paper, paper_across) = run_measuring_normals(&rings(false, true));
+    let mut scene = rings(false, true);
+    scene.body_contacts[0].law.normal_stiffness = 1e8;
+    scene.body_contacts[0].law.tangential_stiffness = 1e8;
+    let (stiff, stiff_across) = run_measuring_normals(&scene);
+    let (paper_drift, stiff_drift) = (energy_drift(&paper), energy_drift(&stiff));
+    let (paper_peak, stiff_peak) = (peak_contacts(&paper), peak_contacts(&stiff));
+    println!(
+        "k = 1e7: {paper_peak} pairs at most, mean |n_y| {paper_across:.2}, drift {:+.2}%; \
+         k = 1e8: {stiff_peak} pairs at most, mean |n_y| {stiff_across:.2}, drift {:+.2}%",
+        100.0 * paper_drift,
+        100.0 * stiff_drift
+    );
+    assert!(paper_across > 0.6, "paper's normals {paper_across}");
+    assert!(
+        stiff_across < paper_across - 0.1,
+        "stiff normals {stiff_across}"
+    );
+    assert!(4 * stiff_peak < paper_peak, "{stiff_peak} vs {paper_peak}");
+    assert!(stiff_drift.abs() <= 0.05, "stiff drift {stiff_drift}");
 }
 
 #[test]

@@ -5,6 +5,7 @@
 mod common;
 
 use mpdem::io::plot::{Series, SeriesStyle, plot_series};
+use mpdem::materials::{MaterialModel, NeoHookean};
 use mpdem::prelude::*;
 use mpdem::resources::BodyPairLog;
 use mpdem::scene::Shape;
@@ -34,24 +35,32 @@ fn hertz_force(a: Real) -> Real {
 }
 
 /// One of the paper's runs: cell R / `cells_per_radius`, `points_per_cell`
-/// along each direction, the line of centres turned by `angle` degrees.
+/// along each direction, the line of centres turned by `angle` degrees;
+/// with `neo_hookean` the disks are Neo-Hookean instead of the scene's
+/// linear elastic (Jaumann) material with the same E and ν.
 #[derive(Clone, Copy, Debug)]
 struct Resolution {
     cells_per_radius: u32,
     points_per_cell: u32,
     angle: Real,
+    neo_hookean: bool,
 }
 
 impl Resolution {
     fn label(&self) -> String {
         format!(
-            "cell R/{}, {} pt/cell{}",
+            "cell R/{}, {} pt/cell{}{}",
             self.cells_per_radius,
             self.points_per_cell * self.points_per_cell,
             if self.angle == 0.0 {
                 String::new()
             } else {
                 format!(", turned {}°", self.angle)
+            },
+            if self.neo_hookean {
+                ", Neo-Hookean"
+            } else {
+                ""
             }
         )
     }
@@ -59,6 +68,12 @@ impl Resolution {
     /// `scenes/hertz_disks.ron` at this resolution and angle.
     fn scene(&self) -> Scene {
         let mut scene = common::load_scene("hertz_disks.ron");
+        if self.neo_hookean {
+            scene.materials[0].model = MaterialModel::NeoHookean(NeoHookean {
+                youngs_modulus: YOUNGS_MODULUS,
+                poisson_ratio: POISSON_RATIO,
+            });
+        }
         let h = RADIUS / Real::from(self.cells_per_radius);
         scene.grid.cell_size = h;
         let n = (0.05 / h).round() as usize;
@@ -127,6 +142,7 @@ fn coarse_disks_carry_the_applied_load_along_the_line_of_centres() {
         cells_per_radius: 20,
         points_per_cell: 1,
         angle: 0.0,
+        neo_hookean: false,
     };
     let curve = load_to_the_end(resolution);
     let applied = curve.applied;
@@ -157,28 +173,59 @@ fn coarse_disks_carry_the_applied_load_along_the_line_of_centres() {
     assert!(curve.final_force.y.abs() < 0.02 * curve.final_force.x.abs());
 }
 
+/// Mean of F / F_Hertz(a) − 1 over the samples whose load is in each half
+/// of the window (Hertz a from 0.2 R to 0.25 R, and from 0.25 R to 0.3 R),
+/// with their numbers: the sign and the growth with load that the mean
+/// |error| hides.
+fn signed_errors(curve: &LoadingCurve) -> [(Real, usize); 2] {
+    let middle = hertz_force(0.25 * RADIUS);
+    let mut sums = [(0.0, 0); 2];
+    for &(a, f) in curve.samples.iter().filter(|(_, f)| in_window(*f)) {
+        let half = usize::from(f > middle);
+        sums[half].0 += f / hertz_force(a) - 1.0;
+        sums[half].1 += 1;
+    }
+    sums.map(|(sum, count)| (sum / count.max(1) as Real, count))
+}
+
 #[test]
-#[ignore = "five runs, 3 minutes; fails today: the error does not fall monotonically with resolution"]
+#[ignore = "seven runs, 5 minutes; fails today: the error does not fall monotonically with resolution"]
 fn hertz_disks_follow_the_2d_hertz_law_and_converge() {
+    // The four resolutions and the turned pair, then two controls
+    // that are printed and plotted but not judged: the finest point spacing
+    // (R/80) on cells twice as fine with one point per cell, and the finest
+    // run with Neo-Hookean disks. They show that the positive bias of the
+    // finest run follows the point spacing, not the points per cell, and
+    // that it depends on the finite-strain law, i.e. the window's strains
+    // (mean contact pressure about 0.1 E) are beyond Hertz's small-strain
+    // theory.
     let runs = [
-        (20, 1, 0.0),
-        (20, 2, 0.0),
-        (40, 1, 0.0),
-        (40, 2, 0.0),
-        (40, 2, 45.0),
+        (20, 1, 0.0, false),
+        (20, 2, 0.0, false),
+        (40, 1, 0.0, false),
+        (40, 2, 0.0, false),
+        (40, 2, 45.0, false),
+        (80, 1, 0.0, false),
+        (40, 2, 0.0, true),
     ]
-    .map(|(cells_per_radius, points_per_cell, angle)| Resolution {
-        cells_per_radius,
-        points_per_cell,
-        angle,
-    });
+    .map(
+        |(cells_per_radius, points_per_cell, angle, neo_hookean)| Resolution {
+            cells_per_radius,
+            points_per_cell,
+            angle,
+            neo_hookean,
+        },
+    );
     let curves: Vec<LoadingCurve> = runs.iter().map(|r| load_to_the_end(*r)).collect();
     let errors: Vec<(Real, usize)> = curves.iter().map(hertz_error).collect();
-    for (run, (error, count)) in runs.iter().zip(&errors) {
+    for ((run, (error, count)), curve) in runs.iter().zip(&errors).zip(&curves) {
+        let [(lower, _), (upper, _)] = signed_errors(curve);
         println!(
-            "{}: F(a) error {:.1}% over {count} samples",
+            "{}: F(a) error {:.1}% over {count} samples; signed {:+.1}% (a 0.2–0.25 R), {:+.1}% (0.25–0.3 R)",
             run.label(),
-            100.0 * error
+            100.0 * error,
+            100.0 * lower,
+            100.0 * upper
         );
     }
     // The turned pair against the unturned finest run: their half-widths at
@@ -206,7 +253,7 @@ fn hertz_disks_follow_the_2d_hertz_law_and_converge() {
     );
     plot(&runs, &curves);
 
-    for (run, (_, count)) in runs.iter().zip(&errors) {
+    for (run, (_, count)) in runs.iter().zip(&errors).take(5) {
         assert!(
             *count >= 5,
             "{}: only {count} samples in the window",
