@@ -7,7 +7,7 @@ use crate::components::{
 use crate::math::Real;
 use crate::resources::{
     BlockLog, BlockPartSample, BlockSample, BodyContacts, BodyPairLog, BodyPairSample, Clock,
-    Diagnostics, EnergyLog, EnergySample, NumericalFailure, Probes,
+    Diagnostics, EnergyLog, EnergySample, NumericalFailure, PairTally, Probes,
 };
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -134,18 +134,25 @@ pub fn record_body_pairs(
     probes: Res<Probes>,
     contacts: Res<BodyContacts>,
     mut log: ResMut<BodyPairLog>,
+    mut tallies: Local<Vec<PairTally>>,
 ) {
     if diagnostics.failure.is_some() || !clock.step.is_multiple_of(probes.every.max(1)) {
         return;
     }
     let time = clock.time;
-    log.samples
-        .extend(contacts.laws.iter().map(|l| BodyPairSample {
-            time,
-            a: l.a,
-            b: l.b,
-            summary: contacts.summary(l.a, l.b),
-        }));
+    contacts.summaries(&mut tallies);
+    log.samples.extend(
+        contacts
+            .laws
+            .iter()
+            .zip(tallies.iter())
+            .map(|(l, t)| BodyPairSample {
+                time,
+                a: l.a,
+                b: l.b,
+                summary: t.summary(),
+            }),
+    );
 }
 
 /// Records every block's reaction, pose and velocity with the probes' period,

@@ -13,7 +13,7 @@ mod stages;
 
 pub use body_contacts::{
     BodyContacts, BodyPairContact, BodyPairLaw, DetectionChunk, MAX_CONTACT_BODIES, PairSummary,
-    law_between,
+    PairTally, law_between,
 };
 pub use clock::Clock;
 pub use contact_settings::{BlockContactHistory, BlockContactKey, ContactSettings, Penetration};
