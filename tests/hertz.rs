@@ -195,7 +195,8 @@ fn hertz_disks_follow_the_2d_hertz_law_and_converge() {
     // that are printed and plotted but not judged: the finest point spacing
     // (R/80) on cells twice as fine with one point per cell, and the finest
     // run with Neo-Hookean disks. They show that the positive bias of the
-    // finest run follows the point spacing, not the points per cell, and
+    // finest run appears at the finest point spacing with 1 point per cell
+    // too (cell size and points per cell shift it by a few points), and
     // that it depends on the finite-strain law, i.e. the window's strains
     // (mean contact pressure about 0.1 E) are beyond Hertz's small-strain
     // theory.
@@ -219,9 +220,9 @@ fn hertz_disks_follow_the_2d_hertz_law_and_converge() {
     let curves: Vec<LoadingCurve> = runs.iter().map(|r| load_to_the_end(*r)).collect();
     let errors: Vec<(Real, usize)> = curves.iter().map(hertz_error).collect();
     for ((run, (error, count)), curve) in runs.iter().zip(&errors).zip(&curves) {
-        let [(lower, _), (upper, _)] = signed_errors(curve);
+        let [(lower, in_lower), (upper, in_upper)] = signed_errors(curve);
         println!(
-            "{}: F(a) error {:.1}% over {count} samples; signed {:+.1}% (a 0.2–0.25 R), {:+.1}% (0.25–0.3 R)",
+            "{}: F(a) error {:.1}% over {count} samples; signed {:+.1}% (a 0.2–0.25 R, {in_lower} samples), {:+.1}% (0.25–0.3 R, {in_upper})",
             run.label(),
             100.0 * error,
             100.0 * lower,

@@ -117,7 +117,8 @@ pub struct PairSummary {
 /// passes over them.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct PairTally {
-    summary: PairSummary,
+    /// The resultant and the count; the widths are filled in by `summary`.
+    sums: PairSummary,
     /// Unit vector across the resultant.
     across: DVec2,
     /// Σ |f|.
@@ -134,7 +135,7 @@ pub struct PairTally {
 impl PairTally {
     /// The pair's contacts summed up (all zero without contacts).
     pub fn summary(&self) -> PairSummary {
-        if self.summary.contacts == 0 {
+        if self.sums.contacts == 0 {
             return PairSummary::default();
         }
         PairSummary {
@@ -144,7 +145,7 @@ impl PairTally {
             } else {
                 0.0
             },
-            ..self.summary
+            ..self.sums
         }
     }
 }
@@ -164,12 +165,12 @@ impl BodyContacts {
         };
         for c in &self.current {
             if let Some(k) = law_of(c) {
-                tallies[k].summary.force += c.force;
-                tallies[k].summary.contacts += 1;
+                tallies[k].sums.force += c.force;
+                tallies[k].sums.contacts += 1;
             }
         }
         for t in tallies.iter_mut() {
-            t.across = t.summary.force.normalize_or_zero().perp();
+            t.across = t.sums.force.normalize_or_zero().perp();
             t.low = (Real::INFINITY, 0.0);
             t.high = (Real::NEG_INFINITY, 0.0);
         }
@@ -246,8 +247,9 @@ mod tests {
     #[test]
     fn summaries_keep_each_pair_apart_and_measure_a_hertz_zone() {
         // Body 0 touches body 1 along x with Hertz's elliptical pressure
-        // over |y| ≤ a, sampled at 201 points, and body 2 at one point far
-        // away; their contacts interleave in key order.
+        // over |y| ≤ a, sampled at 201 points, body 2 at one point far
+        // away, body 3 without force and body 4, which has no law; their
+        // contacts interleave in key order.
         let a = 0.2;
         let mut current = Vec::new();
         for k in 0..=200u32 {
@@ -266,6 +268,9 @@ mod tests {
                     DVec2::new(0.0, -5.0),
                     DVec2::new(3.0, 4.0),
                 ));
+                // Touching without force, and with a body that has no law.
+                current.push(contact(2 * k + 1, 3, DVec2::ZERO, DVec2::new(5.0, 5.0)));
+                current.push(contact(2 * k + 1, 4, DVec2::new(9.0, 9.0), DVec2::ZERO));
             }
         }
         let contacts = BodyContacts {
@@ -281,6 +286,11 @@ mod tests {
                     law: LAW,
                 },
                 BodyPairLaw {
+                    a: 0,
+                    b: 3,
+                    law: LAW,
+                },
+                BodyPairLaw {
                     a: 1,
                     b: 2,
                     law: LAW,
@@ -291,7 +301,7 @@ mod tests {
         };
         let mut tallies = Vec::new();
         contacts.summaries(&mut tallies);
-        let [hertz, single, none] = [0, 1, 2].map(|k| tallies[k].summary());
+        let [hertz, single, unloaded, none] = [0, 1, 2, 3].map(|k| tallies[k].summary());
         assert_eq!(hertz.contacts, 201);
         assert!(hertz.force.y == 0.0 && hertz.force.x > 0.0);
         // The extent: the outermost pairs at ±a, plus a disk radius.
@@ -307,6 +317,13 @@ mod tests {
         assert_eq!(single.contacts, 1);
         assert_eq!(single.force, DVec2::new(0.0, -5.0));
         assert_eq!((single.half_width, single.pressure_half_width), (0.01, 0.0));
+        // A touch without force: counted, its extent only, no pressure.
+        assert_eq!(unloaded.contacts, 1);
+        assert_eq!(unloaded.force, DVec2::ZERO);
+        assert_eq!(
+            (unloaded.half_width, unloaded.pressure_half_width),
+            (0.01, 0.0)
+        );
         assert_eq!(none, PairSummary::default());
     }
 }
