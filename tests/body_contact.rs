@@ -223,27 +223,18 @@ fn body_contacts_give_the_same_state_for_one_and_two_threads() {
 fn bad_body_contacts_are_refused() {
     let mut scene = rings(true, true);
     scene.body_contacts[0].between.1 = "middle".into();
-    let message = Simulation::from_scene(&scene)
-        .err()
-        .expect("refused")
-        .to_string();
+    let message = common::refusal(&scene);
     assert!(
         message.contains("unknown body or group 'middle'"),
         "{message}"
     );
     let mut scene = rings(true, true);
     scene.body_contacts[0].law.friction = -1.0;
-    let message = Simulation::from_scene(&scene)
-        .err()
-        .expect("refused")
-        .to_string();
+    let message = common::refusal(&scene);
     assert!(message.contains("friction must be ≥ 0"), "{message}");
     let mut scene = rings(true, true);
     scene.bodies[1].contact_radius = Some(scene.grid.cell_size);
-    let message = Simulation::from_scene(&scene)
-        .err()
-        .expect("refused")
-        .to_string();
+    let message = common::refusal(&scene);
     assert!(message.contains("more than half a cell"), "{message}");
 }
 

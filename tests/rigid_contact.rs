@@ -118,18 +118,12 @@ fn bad_blocks_are_refused_and_risky_ones_warned() {
             DVec2::new(0.15, 0.1),
         ],
     };
-    let message = Simulation::from_scene(&scene)
-        .err()
-        .expect("refused")
-        .to_string();
+    let message = common::refusal(&scene);
     assert!(message.contains("Compound"), "{message}");
     // Negative friction.
     let mut scene = base.clone();
     scene.blocks[0].contact.friction = -0.1;
-    let message = Simulation::from_scene(&scene)
-        .err()
-        .expect("refused")
-        .to_string();
+    let message = common::refusal(&scene);
     assert!(message.contains("friction must be ≥ 0"), "{message}");
     // A time step above 2 sqrt(m_p / k_n) and a block sunk into the body.
     let mut scene = base;

@@ -133,10 +133,7 @@ fn geostatic_stress_needs_gravity_pointing_down() {
     });
     assert!(Simulation::from_scene(&scene).is_ok());
     scene.gravity = DVec2::new(0.0, 9.81);
-    let message = Simulation::from_scene(&scene)
-        .err()
-        .expect("refused")
-        .to_string();
+    let message = common::refusal(&scene);
     assert!(message.contains("gravity pointing down"), "{message}");
 }
 

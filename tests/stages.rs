@@ -144,23 +144,14 @@ fn bad_stages_are_refused() {
     let base = common::load_scene("geostatic_column.ron");
     let mut scene = base.clone();
     scene.stages[1].tractions[0].body = "sand".into();
-    let message = Simulation::from_scene(&scene)
-        .err()
-        .expect("refused")
-        .to_string();
+    let message = common::refusal(&scene);
     assert!(message.contains("unknown body 'sand'"), "{message}");
     let mut scene = base.clone();
     scene.stages[1].remove_blocks.push("pile".into());
-    let message = Simulation::from_scene(&scene)
-        .err()
-        .expect("refused")
-        .to_string();
+    let message = common::refusal(&scene);
     assert!(message.contains("unknown block 'pile'"), "{message}");
     let mut scene = base;
     scene.stages[1].name = "geostatic".into();
-    let message = Simulation::from_scene(&scene)
-        .err()
-        .expect("refused")
-        .to_string();
+    let message = common::refusal(&scene);
     assert!(message.contains("used twice"), "{message}");
 }

@@ -23,6 +23,15 @@ pub fn run_scene(scene: &Scene) -> Simulation {
     sim
 }
 
+/// The message with which building a simulation from `scene` is refused
+/// (panics if it is accepted).
+pub fn refusal(scene: &Scene) -> String {
+    Simulation::from_scene(scene)
+        .err()
+        .expect("refused")
+        .to_string()
+}
+
 /// The samples of the probe named `name`.
 pub fn probe_samples(sim: &Simulation, name: &str) -> Vec<mpdem::resources::ProbeSample> {
     let probes = sim.world().resource::<Probes>();
