@@ -242,6 +242,7 @@ fn disk_pair(
         overlap,
         at,
         radius: 0.5 * (rp + rq),
+        separation: gap,
     })
 }
 

@@ -5,7 +5,7 @@ use crate::components::{
     BlockContactLaw, BlockContacts, BlockId, MaterialPoints, NeighbourList, PartReactions,
     PointContact, Pose, Reaction, RigidMass, RigidShape, RigidVelocity,
 };
-use crate::contact::{disk_shape_contact, overlap_area, pair_force};
+use crate::contact::{disk_shape_contact, overlap_area, overlap_area_integral, pair_force};
 use crate::math::{DVec2, Real};
 use crate::resources::{Clock, ContactSettings, Penetration};
 use crate::rigid::velocity_at;
@@ -98,17 +98,25 @@ pub fn compute_rigid_contacts(
                 let carried = previous
                     .binary_search_by(|c| (c.body, c.point).cmp(&(body, p)))
                     .map_or(DVec2::ZERO, |k| previous[k].tangential);
-                let delta = match settings.penetration {
-                    Penetration::Depth => geometry.depth,
-                    Penetration::Area => overlap_area(radius, geometry.depth),
+                let law = &law.0;
+                let (delta, normal_potential) = match settings.penetration {
+                    Penetration::Depth => (geometry.depth, 0.5 * geometry.depth.powi(2)),
+                    Penetration::Area => (
+                        overlap_area(radius, geometry.depth),
+                        overlap_area_integral(radius, geometry.depth),
+                    ),
                 };
-                let f = pair_force(&law.0, delta, geometry.normal, relative, carried, clock.dt);
+                let f = pair_force(law, delta, geometry.normal, relative, carried, clock.dt);
                 Some(PointContact {
                     body,
                     point: p,
                     force: f.force,
                     tangential: f.tangential,
                     at: geometry.point,
+                    at_on_block: pose.to_block(geometry.point),
+                    from: points.position[i],
+                    potential: law.normal_stiffness * normal_potential
+                        + f.tangential.length_squared() / (2.0 * law.tangential_stiffness),
                 })
             })
             .collect_into_vec(&mut found);

@@ -1,13 +1,13 @@
-//! End of the step: finiteness check, clock, probes and energies.
+//! End of the step: finiteness check, clock, probes, energies, blocks and body pairs.
 
 use crate::components::{
-    BlockId, BodyIndex, BodyName, Material, MaterialPoints, PartReactions, Pose, Reaction,
-    RigidVelocity, sort_into_scene_order,
+    BlockContacts, BlockId, BodyIndex, BodyName, Material, MaterialPoints, PartReactions,
+    PointEnergies, Pose, Reaction, RigidVelocity, sort_into_scene_order,
 };
-use crate::math::Real;
 use crate::resources::{
     BlockLog, BlockPartSample, BlockSample, BodyContacts, BodyPairLog, BodyPairSample, Clock,
-    Diagnostics, EnergyLog, EnergySample, NumericalFailure, PairTally, Probes,
+    ContactWork, Diagnostics, EnergyLog, EnergySample, Gravity, NumericalFailure, PairTally,
+    Probes,
 };
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -91,36 +91,53 @@ pub fn advance_clock(mut clock: ResMut<Clock>) {
     clock.advance();
 }
 
-/// Reused space of the energy record: bodies in scene order and the
-/// per-chunk energy sums.
-type EnergyScratch = (Vec<(BodyIndex, Entity)>, Vec<(Real, Real)>);
+/// Reused space of the energy record: bodies in scene order, the per-chunk
+/// energy sums and the blocks in scene order.
+type EnergyScratch = (
+    Vec<(BodyIndex, Entity)>,
+    Vec<PointEnergies>,
+    Vec<(u32, Entity)>,
+);
 
 /// Records probes and energies every `Probes::every` steps, unless the step
 /// failed (a broken state is never recorded).
 ///
-/// Reads: `Clock`, `Diagnostics`, `MaterialPoints`, `Material`, `BodyIndex`,
-/// `BodyContacts` (the contact springs' energy). Writes: `Probes`, `EnergyLog`.
+/// Reads: `Clock`, `Diagnostics`, `Gravity`, `MaterialPoints`, `Material`,
+/// `BodyIndex`, `BodyContacts` and `BlockContacts` (the contact springs'
+/// energy), `ContactWork`. Writes: `Probes`, `EnergyLog`.
+#[allow(clippy::too_many_arguments)] // one resource or query per energy term
 pub fn record_probes_and_energy(
     clock: Res<Clock>,
     diagnostics: Res<Diagnostics>,
+    gravity: Res<Gravity>,
     mut probes: ResMut<Probes>,
     mut energy: ResMut<EnergyLog>,
     body_contacts: Res<BodyContacts>,
+    work: Res<ContactWork>,
     mut scratch: Local<EnergyScratch>,
     bodies: Query<(Entity, &BodyIndex, &MaterialPoints, &Material)>,
+    blocks: Query<(Entity, &BlockId, &BlockContacts)>,
 ) {
     if diagnostics.failure.is_some() || !clock.step.is_multiple_of(probes.every.max(1)) {
         return;
     }
-    let (order, sums) = &mut *scratch;
+    let (order, sums, block_order) = &mut *scratch;
     probes.record(clock.time, |entity| bodies.get(entity).ok().map(|b| b.2));
     sort_into_scene_order(order, bodies.iter().map(|(e, i, _, _)| (*i, e)));
     let ordered = order
         .iter()
         .filter_map(|(_, e)| bodies.get(*e).ok())
         .map(|b| (b.2, b.3));
-    let mut sample = EnergySample::of(clock.time, ordered, sums);
-    sample.contact = body_contacts.potential_energy();
+    let mut sample = EnergySample::of(clock.time, ordered, gravity.0, sums);
+    block_order.clear();
+    block_order.extend(blocks.iter().map(|(e, id, _)| (id.index, e)));
+    block_order.sort_unstable();
+    sample.contact = block_order
+        .iter()
+        .filter_map(|(_, e)| blocks.get(*e).ok())
+        .flat_map(|(_, _, contacts)| contacts.current.iter().map(|c| c.potential))
+        .fold(body_contacts.potential_energy(), |sum, p| sum + p);
+    sample.dissipated = -work.work - sample.contact;
     energy.samples.push(sample);
 }
 

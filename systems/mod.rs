@@ -10,6 +10,7 @@ mod body_contact;
 mod boundary;
 mod contact;
 mod contact_transfer;
+mod contact_work;
 mod diagnostics;
 mod grid_reset;
 mod grid_to_particle;
@@ -24,6 +25,7 @@ pub use body_contact::compute_body_contacts;
 pub use boundary::rebuild_node_constraints;
 pub use contact::compute_rigid_contacts;
 pub use contact_transfer::transfer_contact_forces;
+pub use contact_work::account_contact_work;
 pub use diagnostics::{
     advance_clock, check_finite, record_blocks, record_body_pairs, record_probes_and_energy,
 };
@@ -70,7 +72,7 @@ pub enum MpmSystems {
     GridToParticle,
     /// Integration of dynamic rigid blocks.
     RigidBodies,
-    /// Clock, finiteness check, probes and energies.
+    /// Finiteness check, contact work, clock, probes and energies.
     Diagnostics,
     /// Empty: a hook for user systems at the end of the step.
     Last,
@@ -136,6 +138,7 @@ pub fn add_default_systems(schedule: &mut Schedule, scheme: UpdateScheme) {
         move_rigid_blocks.in_set(MpmSystems::RigidBodies),
         (
             check_finite,
+            account_contact_work,
             advance_clock,
             record_probes_and_energy,
             record_blocks,

@@ -68,14 +68,19 @@ fn colliding_rings_rebound_and_stay_whole() {
     let (_, v_right) = centre(&mut sim, "right");
     let reaches = [reach(&mut sim, "left"), reach(&mut sim, "right")];
     let log = sim.world().resource::<mpdem::resources::EnergyLog>();
-    let (first, last) = (log.samples[0].total(), log.samples.last().unwrap().total());
+    let (first, last) = (log.samples[0], *log.samples.last().unwrap());
+    let balance_drift = last.balance() / first.balance() - 1.0;
     println!(
-        "two rings: centre velocities {:.2} / {:.2} m/s, reach {:.4} / {:.4} m, energy drift {:+.2}%",
+        "two rings: centre velocities {:.2} / {:.2} m/s, reach {:.4} / {:.4} m, energy drift {:+.2}%, \
+         contacts dissipated {:.1} J/m ({:.2}%), total + dissipated drift {:+.2}%",
         v_left.x,
         v_right.x,
         reaches[0],
         reaches[1],
-        100.0 * (last / first - 1.0)
+        100.0 * (last.total() / first.total() - 1.0),
+        last.dissipated,
+        100.0 * last.dissipated / first.total(),
+        100.0 * balance_drift
     );
     // Rebound: the relative velocity of the centres has reversed.
     assert!(v_left.x - v_right.x < 0.0, "{v_left} vs {v_right}");
@@ -85,6 +90,12 @@ fn colliding_rings_rebound_and_stay_whole() {
     for r in reaches {
         assert!(r < 1.25 * 0.04, "a point is {r} m from its ring's centre");
     }
+    // The energy the contacts took and do not hold (measured 4.9% of the
+    // initial energy: friction on the interlocked surface points) closes the
+    // balance up to the MPM scheme's own loss, held to the issue's 5%
+    // (measured −3.4%; −2.5% for the frictionless rings). A contact work
+    // with the wrong sign or a missed pair would leave −13% or −8%.
+    assert!(balance_drift.abs() <= 0.05, "balance drift {balance_drift}");
 }
 
 #[test]

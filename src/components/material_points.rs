@@ -25,6 +25,17 @@ pub struct NewPoint {
     pub contact_radius: Real,
 }
 
+/// Energies of a set of points (J/m), see [`MaterialPoints::energies`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PointEnergies {
+    /// Σ ½ m |V|².
+    pub kinetic: Real,
+    /// Σ w(σ) V.
+    pub strain: Real,
+    /// −Σ m g · (x − X): gravity's potential relative to the initial positions.
+    pub gravity: Real,
+}
+
 /// The largest distance any point of the body moved in the last
 /// grid-to-particle update (m). The contact broad phase adds it up to know
 /// when a point may have left a neighbour list's margin.
@@ -109,7 +120,9 @@ impl MaterialPoints {
         self.mass.iter().sum()
     }
 
-    /// Kinetic energy Σ ½ m |V|² and stored strain energy Σ w(σ) V (J/m).
+    /// Kinetic energy Σ ½ m |V|², stored strain energy Σ w(σ) V and the
+    /// change of gravity's potential since the points were placed,
+    /// −Σ m g · (x − X) (J/m).
     /// Points are summed in fixed chunks of [`CHUNK_POINTS`] in parallel and
     /// the chunk sums added in order, so the result never depends on the
     /// thread count.
@@ -117,27 +130,30 @@ impl MaterialPoints {
     pub fn energies(
         &self,
         model: &dyn ConstitutiveModel,
-        chunk_sums: &mut Vec<(Real, Real)>,
-    ) -> (Real, Real) {
+        gravity: DVec2,
+        chunk_sums: &mut Vec<PointEnergies>,
+    ) -> PointEnergies {
         (0..self.len().div_ceil(CHUNK_POINTS))
             .into_par_iter()
             .map(|c| {
                 let range = c * CHUNK_POINTS..((c + 1) * CHUNK_POINTS).min(self.len());
-                range.fold((0.0, 0.0), |(kinetic, strain), p| {
-                    (
-                        kinetic + 0.5 * self.mass[p] * self.velocity[p].length_squared(),
-                        strain
-                            + model.stored_energy_density(
-                                &self.stress[p],
-                                &self.deformation_gradient[p],
-                            ) * self.volume[p],
-                    )
+                range.fold(PointEnergies::default(), |sum, p| PointEnergies {
+                    kinetic: sum.kinetic + 0.5 * self.mass[p] * self.velocity[p].length_squared(),
+                    strain: sum.strain
+                        + model
+                            .stored_energy_density(&self.stress[p], &self.deformation_gradient[p])
+                            * self.volume[p],
+                    gravity: sum.gravity - self.mass[p] * gravity.dot(self.displacement(p)),
                 })
             })
             .collect_into_vec(chunk_sums);
         chunk_sums
             .iter()
-            .fold((0.0, 0.0), |(k, s), (dk, ds)| (k + dk, s + ds))
+            .fold(PointEnergies::default(), |sum, chunk| PointEnergies {
+                kinetic: sum.kinetic + chunk.kinetic,
+                strain: sum.strain + chunk.strain,
+                gravity: sum.gravity + chunk.gravity,
+            })
     }
 
     /// Total linear momentum Σ m_p V_p.

@@ -13,7 +13,7 @@ pub use body::{
     sort_into_scene_order,
 };
 pub use grid_layer::{Fix, GridLayer, GridNode, NodeConstraint};
-pub use material_points::{MaterialPoints, NewPoint, StepTravel};
+pub use material_points::{MaterialPoints, NewPoint, PointEnergies, StepTravel};
 pub use rigid::{
     BlockContactLaw, BlockContacts, BlockId, BlockOutline, NeighbourList, PartReactions,
     PointContact, Pose, Reaction, RigidMass, RigidMotion, RigidShape, RigidVelocity,

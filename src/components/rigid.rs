@@ -53,6 +53,16 @@ impl Pose {
     pub fn rotate(&self, v: DVec2) -> DVec2 {
         DVec2::from_angle(self.angle).rotate(v)
     }
+
+    /// A world position in the block's frame.
+    pub fn to_block(&self, x: DVec2) -> DVec2 {
+        DVec2::from_angle(-self.angle).rotate(x - self.origin)
+    }
+
+    /// A position of the block's frame in the world.
+    pub fn to_world(&self, local: DVec2) -> DVec2 {
+        self.origin + self.rotate(local)
+    }
 }
 
 /// Velocity of the block: of its centre of mass, and its spin (rad/s).
@@ -126,6 +136,15 @@ pub struct PointContact {
     pub tangential: DVec2,
     /// Contact point (m).
     pub at: DVec2,
+    /// The contact point in the block's frame, to follow the block's
+    /// surface through the step (m).
+    pub at_on_block: DVec2,
+    /// The point's position when the contact was found (m).
+    pub from: DVec2,
+    /// Energy stored in the contact's springs (J/m): the normal spring's
+    /// (½ k_n δ², or k_n ∫A for the overlap-area measure) plus the
+    /// tangential spring's |f_t|² / (2 k_t).
+    pub potential: Real,
 }
 
 /// This step's contacts of the block, in neighbour-list order, and last

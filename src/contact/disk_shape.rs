@@ -47,6 +47,20 @@ pub fn overlap_area(radius: Real, depth: Real) -> Real {
     radius * radius * (h / radius).acos() - h * (2.0 * radius * d - d * d).sqrt()
 }
 
+/// ∫₀^δ A(s) ds for the segment area A of [`overlap_area`]: the potential
+/// energy per unit normal stiffness of a contact whose normal force is
+/// k_n A(δ) (J/m per N/m³). In closed form, with h = r − δ:
+/// r² √(r² − h²) − (r² − h²)^{3/2} / 3 − r² h acos(h / r); beyond δ = 2r the
+/// whole disk is inside and the force stays k_n π r².
+pub fn overlap_area_integral(radius: Real, depth: Real) -> Real {
+    let d = depth.clamp(0.0, 2.0 * radius);
+    let r2 = radius * radius;
+    let h = radius - d;
+    let chord2 = (r2 - h * h).max(0.0);
+    let within = r2 * chord2.sqrt() - chord2 * chord2.sqrt() / 3.0 - r2 * h * (h / radius).acos();
+    within + std::f64::consts::PI * r2 * (depth - 2.0 * radius).max(0.0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -62,6 +76,25 @@ mod tests {
         let d: Real = 1e-6;
         let shallow = 4.0 / 3.0 * (2.0 * r).sqrt() * d.powf(1.5);
         assert!((overlap_area(r, d) / shallow - 1.0).abs() < 1e-4);
+    }
+
+    #[test]
+    fn overlap_area_integral_is_the_area_summed_over_depth() {
+        let r: Real = 0.1;
+        // Half-way, ∫ y dA over a half disk: 2 r³ / 3; at 2r, π r³ (A(s) +
+        // A(2r − s) = π r²); beyond, π r² per extra metre.
+        assert!((overlap_area_integral(r, r) - 2.0 * r.powi(3) / 3.0).abs() < 1e-16);
+        let pi = std::f64::consts::PI;
+        assert!((overlap_area_integral(r, 2.0 * r) - pi * r.powi(3)).abs() < 1e-16);
+        assert!((overlap_area_integral(r, 0.3) - pi * r.powi(3) - pi * r * r * 0.1).abs() < 1e-16);
+        assert_eq!(overlap_area_integral(r, 0.0), 0.0);
+        // Its slope is the area (central difference, error of order ε²).
+        for d in [0.01, 0.07, 0.15] {
+            let eps = 1e-6;
+            let slope = (overlap_area_integral(r, d + eps) - overlap_area_integral(r, d - eps))
+                / (2.0 * eps);
+            assert!((slope / overlap_area(r, d) - 1.0).abs() < 1e-7, "at {d}");
+        }
     }
 
     #[test]

@@ -8,7 +8,7 @@ mod force_application;
 mod linear_spring;
 mod shape_shape;
 
-pub use disk_shape::{DiskContact, disk_shape_contact, overlap_area};
+pub use disk_shape::{DiskContact, disk_shape_contact, overlap_area, overlap_area_integral};
 pub use force_application::{ForceApplication, traction_points};
 pub use linear_spring::{ContactLaw, PairForce, pair_force};
 pub use shape_shape::{ShapeContact, shape_shape_contacts};

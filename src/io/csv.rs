@@ -28,23 +28,30 @@ pub fn write_probes(path: &Path, probes: &Probes) -> std::io::Result<()> {
     out.flush()
 }
 
-/// Writes `energy.csv`: time, kinetic, strain, contact, total (J per metre
-/// of thickness). `total` is kinetic + strain + contact (the body–body
-/// contact springs): it leaves out the potential of gravity and the work of
-/// damping, friction and boundaries, so it is conserved only for free
-/// elastic bodies.
+/// Writes `energy.csv`: time, kinetic, strain, contact, total, gravity,
+/// dissipated, balance (J per metre of thickness). `total` sums the
+/// kinetic, strain and contact (the point contacts' springs) energies,
+/// conserved by free elastic bodies; `balance` adds gravity's potential and what the contacts
+/// dissipated (see [`crate::resources::EnergySample::balance`] for what it
+/// still leaves out).
 pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
-    writeln!(out, "time,kinetic,strain,contact,total")?;
+    writeln!(
+        out,
+        "time,kinetic,strain,contact,total,gravity,dissipated,balance"
+    )?;
     for s in &energy.samples {
         writeln!(
             out,
-            "{:e},{:e},{:e},{:e},{:e}",
+            "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
             s.time,
             s.kinetic,
             s.strain,
             s.contact,
-            s.total()
+            s.total(),
+            s.gravity,
+            s.dissipated,
+            s.balance()
         )?;
     }
     out.flush()

@@ -197,11 +197,12 @@ impl RunOutput {
         let pick = |f: fn(&crate::resources::EnergySample) -> Real| -> Vec<(Real, Real)> {
             energy.samples.iter().map(|s| (s.time, f(s))).collect()
         };
-        let (kinetic, strain, contact, total) = (
+        let (kinetic, strain, contact, total, balance) = (
             pick(|s| s.kinetic),
             pick(|s| s.strain),
             pick(|s| s.contact),
             pick(|s| s.total()),
+            pick(|s| s.balance()),
         );
         plot_series(
             &self.dir.join("energy.png"),
@@ -227,6 +228,11 @@ impl RunOutput {
                 Series {
                     name: "total",
                     points: &total,
+                    style: SeriesStyle::Line,
+                },
+                Series {
+                    name: "total + gravity + dissipated",
+                    points: &balance,
                     style: SeriesStyle::Line,
                 },
             ],

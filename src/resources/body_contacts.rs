@@ -39,6 +39,8 @@ pub struct BodyPairContact {
     /// Mean radius of the two disks (m): the contact zone reaches this far
     /// beyond the contact point across the normal.
     pub radius: Real,
+    /// x_p − x_q when the contact was found (m).
+    pub separation: DVec2,
 }
 
 impl BodyPairContact {
@@ -215,7 +217,7 @@ impl BodyContacts {
                         + c.tangential.length_squared() / (2.0 * law.tangential_stiffness),
                 )
             })
-            .sum()
+            .fold(0.0, |sum, e| sum + e)
     }
 }
 
@@ -241,6 +243,7 @@ mod tests {
             overlap: 0.0,
             at,
             radius: 0.01,
+            separation: DVec2::ZERO,
         }
     }
 

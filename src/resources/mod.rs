@@ -4,6 +4,7 @@
 mod body_contacts;
 mod clock;
 mod contact_settings;
+mod contact_work;
 mod diagnostics;
 mod grid;
 mod records;
@@ -17,6 +18,7 @@ pub use body_contacts::{
 };
 pub use clock::Clock;
 pub use contact_settings::{BlockContactHistory, BlockContactKey, ContactSettings, Penetration};
+pub use contact_work::ContactWork;
 pub use diagnostics::{Diagnostics, NumericalFailure};
 pub use grid::{EdgeCondition, EdgeConditions, Grid};
 pub use records::{

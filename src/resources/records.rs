@@ -1,7 +1,7 @@
 //! Time series recorded during a run: probes and energies.
 
 use super::body_contacts::PairSummary;
-use crate::components::{Material, MaterialPoints};
+use crate::components::{Material, MaterialPoints, PointEnergies};
 use crate::math::{DVec2, Real, SymTensor};
 use bevy_ecs::prelude::{Entity, Resource};
 
@@ -73,7 +73,7 @@ impl Probes {
     }
 }
 
-/// Energies of all bodies at one time.
+/// Energies of all bodies at one time (J per metre of thickness).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EnergySample {
     /// Simulated time (s).
@@ -82,36 +82,60 @@ pub struct EnergySample {
     pub kinetic: Real,
     /// Stored strain energy Σ w(σ_p) V_p (J/m).
     pub strain: Real,
-    /// Potential energy of the body–body contact springs (J/m).
+    /// Potential energy of the point contacts' springs, body–body and
+    /// point–block (J/m).
     pub contact: Real,
+    /// Gravity's potential relative to the initial positions,
+    /// −Σ m_p g · (x_p − X_p) (J/m), with the gravity of the time.
+    pub gravity: Real,
+    /// Energy the point contacts have taken from the bodies since the start
+    /// and do not hold in their springs (J/m): −W − `contact`, W the work of
+    /// their forces on the relative motion ([`crate::resources::ContactWork`]).
+    /// Friction's dissipation, plus the springs' time-integration error.
+    pub dissipated: Real,
 }
 
 impl EnergySample {
-    /// The energies of `bodies` (in scene order) at `time`; `scratch` is
-    /// reused between calls (see [`MaterialPoints::energies`]).
+    /// The energies of `bodies` (in scene order) at `time` under `gravity`,
+    /// without contacts (`contact` and `dissipated` zero); `scratch` is reused
+    /// between calls (see [`MaterialPoints::energies`]).
     pub fn of<'a>(
         time: Real,
         bodies: impl Iterator<Item = (&'a MaterialPoints, &'a Material)>,
-        scratch: &mut Vec<(Real, Real)>,
+        gravity: DVec2,
+        scratch: &mut Vec<PointEnergies>,
     ) -> Self {
         let mut sample = Self {
             time,
             kinetic: 0.0,
             strain: 0.0,
             contact: 0.0,
+            gravity: 0.0,
+            dissipated: 0.0,
         };
         for (points, material) in bodies {
-            let (kinetic, strain) = points.energies(material.model.as_model(), scratch);
-            sample.kinetic += kinetic;
-            sample.strain += strain;
+            let energies = points.energies(material.model.as_model(), gravity, scratch);
+            sample.kinetic += energies.kinetic;
+            sample.strain += energies.strain;
+            sample.gravity += energies.gravity;
         }
         sample
     }
 
     /// Kinetic + strain + contact energy (J/m): conserved by a free elastic
-    /// system without damping (gravity's potential is not included).
+    /// system without damping or friction (gravity's potential is not
+    /// included).
     pub fn total(&self) -> Real {
         self.kinetic + self.strain + self.contact
+    }
+
+    /// Total + gravity's potential + what the contacts dissipated (J/m):
+    /// constant for elastic bodies under constant gravity, touching each
+    /// other and fixed blocks, without damping, up to the MPM scheme's own
+    /// error. It leaves out the work of damping, of tractions, of moving
+    /// blocks and of the grid's boundaries, and the blocks' own energy.
+    pub fn balance(&self) -> Real {
+        self.total() + self.gravity + self.dissipated
     }
 }
 

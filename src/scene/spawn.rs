@@ -121,6 +121,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         bodies
             .iter()
             .filter_map(|e| Some((world.get::<MaterialPoints>(*e)?, world.get::<Material>(*e)?))),
+        scene.gravity,
         &mut Vec::new(),
     );
     world.insert_resource(grid);
@@ -176,6 +177,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         laws,
         ..Default::default()
     });
+    world.insert_resource(crate::resources::ContactWork::default());
     if !scene.stages.is_empty() {
         let mut plan = StagePlan {
             scene: scene.clone(),
