@@ -61,6 +61,34 @@ pub trait ConstitutiveModel: Send + Sync {
     fn stored_energy_density(&self, stress: &SymTensor, f: &DMat2) -> Real;
 }
 
+/// A plasticity model on a linear elastic predictor: the elastic trial
+/// stress (Jaumann rate), then the model's return to its admissible set.
+/// Such a model is a [`ConstitutiveModel`] through this trait, with the
+/// elastic part's wave speed and stored energy.
+pub trait ElasticPlastic: Send + Sync {
+    /// The elastic part.
+    fn elastic(&self) -> LinearElastic;
+
+    /// Returns a trial stress to the admissible set.
+    fn return_map(&self, trial: SymTensor) -> SymTensor;
+}
+
+impl<T: ElasticPlastic> ConstitutiveModel for T {
+    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) {
+        let mut trial = *stress;
+        self.elastic().update_stress(&mut trial, step);
+        *stress = self.return_map(trial);
+    }
+
+    fn p_wave_modulus(&self) -> Real {
+        self.elastic().p_wave_modulus()
+    }
+
+    fn stored_energy_density(&self, stress: &SymTensor, f: &DMat2) -> Real {
+        self.elastic().stored_energy_density(stress, f)
+    }
+}
+
 /// The constitutive models a scene can choose.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum MaterialModel {

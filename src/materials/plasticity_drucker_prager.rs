@@ -6,8 +6,8 @@
 //! potential (eq. 15b) G = τ + η̄ σ_m; tension cut-off (eq. 17) F_t = σ_m − σ_t,
 //! G_t = σ_m. η, ξ, η̄ follow eq. 16 (the plane-strain match to Mohr–Coulomb).
 
-use super::{ConstitutiveModel, LinearElastic, PointStep};
-use crate::math::{DMat2, Real, SymTensor};
+use super::{ElasticPlastic, LinearElastic};
+use crate::math::{Real, SymTensor};
 use crate::scene::rules::{non_negative, poisson_ratio, positive};
 use serde::{Deserialize, Serialize};
 
@@ -68,14 +68,6 @@ impl DruckerPrager {
         Ok(())
     }
 
-    /// The elastic part.
-    fn elastic(&self) -> LinearElastic {
-        LinearElastic {
-            youngs_modulus: self.youngs_modulus,
-            poisson_ratio: self.poisson_ratio,
-        }
-    }
-
     /// The shear yield function F = τ + η σ_m − ξ c at `stress` (eq. 15a).
     pub fn shear_yield(&self, stress: &SymTensor) -> Real {
         let (mean, _, tau) = invariants(stress);
@@ -90,6 +82,28 @@ impl DruckerPrager {
                 .min(xi(self.friction_angle) * self.cohesion / eta)
         } else {
             self.tension_cutoff
+        }
+    }
+}
+
+/// Mean stress σ_m, deviator s and τ = √J₂ of a plane-strain stress.
+fn invariants(stress: &SymTensor) -> (Real, SymTensor, Real) {
+    let mean = stress.trace3() / 3.0;
+    let s = SymTensor::new(
+        stress.xx - mean,
+        stress.yy - mean,
+        stress.xy,
+        stress.zz - mean,
+    );
+    (mean, s, (0.5 * s.contract(&s)).sqrt())
+}
+
+impl ElasticPlastic for DruckerPrager {
+    /// The elastic part.
+    fn elastic(&self) -> LinearElastic {
+        LinearElastic {
+            youngs_modulus: self.youngs_modulus,
+            poisson_ratio: self.poisson_ratio,
         }
     }
 
@@ -136,37 +150,10 @@ impl DruckerPrager {
     }
 }
 
-/// Mean stress σ_m, deviator s and τ = √J₂ of a plane-strain stress.
-fn invariants(stress: &SymTensor) -> (Real, SymTensor, Real) {
-    let mean = stress.trace3() / 3.0;
-    let s = SymTensor::new(
-        stress.xx - mean,
-        stress.yy - mean,
-        stress.xy,
-        stress.zz - mean,
-    );
-    (mean, s, (0.5 * s.contract(&s)).sqrt())
-}
-
-impl ConstitutiveModel for DruckerPrager {
-    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) {
-        let mut trial = *stress;
-        self.elastic().update_stress(&mut trial, step);
-        *stress = self.return_map(trial);
-    }
-
-    fn p_wave_modulus(&self) -> Real {
-        self.elastic().p_wave_modulus()
-    }
-
-    fn stored_energy_density(&self, stress: &SymTensor, f: &DMat2) -> Real {
-        self.elastic().stored_energy_density(stress, f)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::materials::{ConstitutiveModel, PointStep};
 
     const SAND: DruckerPrager = DruckerPrager {
         youngs_modulus: 2e7,

@@ -49,8 +49,8 @@
 //! Every branch ends on or inside the admissible set, so a finite trial
 //! always gives a finite, admissible stress.
 
-use super::{ConstitutiveModel, LinearElastic, PointStep};
-use crate::math::{DMat2, Real, SymTensor};
+use super::{ElasticPlastic, LinearElastic};
+use crate::math::{Real, SymTensor};
 use crate::scene::rules::{non_negative, poisson_ratio, positive};
 use serde::{Deserialize, Deserializer, Serialize, de::Error};
 use std::f64::consts::{FRAC_PI_3, PI};
@@ -177,14 +177,6 @@ impl MohrCoulomb {
         Ok(())
     }
 
-    /// The elastic part.
-    fn elastic(&self) -> LinearElastic {
-        LinearElastic {
-            youngs_modulus: self.youngs_modulus,
-            poisson_ratio: self.poisson_ratio,
-        }
-    }
-
     /// The yield function F of eq. 13 at `stress`, evaluated in its
     /// principal-stress form (module docs), which equals the (p, q, Θ) form
     /// but stays accurate on the meridians, where acos of the J₃ ratio loses
@@ -201,36 +193,6 @@ impl MohrCoulomb {
         } else {
             self.tension_cutoff
         }
-    }
-
-    /// Returns a trial stress to the admissible set (see the module docs).
-    pub fn return_map(&self, trial: SymTensor) -> SymTensor {
-        let centre = 0.5 * (trial.xx + trial.yy);
-        let half = 0.5 * (trial.xx - trial.yy);
-        let radius = (half * half + trial.xy * trial.xy).sqrt();
-        let (cos2, sin2) = if radius > 0.0 {
-            (half / radius, trial.xy / radius)
-        } else {
-            (1.0, 0.0)
-        };
-        // Principal values: major in-plane, minor in-plane, out-of-plane.
-        let values = [centre + radius, centre - radius, trial.zz];
-        let order = descending(&values);
-        let sorted = [values[order[0]], values[order[1]], values[order[2]]];
-        let Some(returned) = Surfaces::new(self).return_principal(sorted) else {
-            return trial;
-        };
-        let mut out = [0.0; 3];
-        for (slot, &index) in order.iter().enumerate() {
-            out[index] = returned[slot];
-        }
-        let (mean, deviation) = (0.5 * (out[0] + out[1]), 0.5 * (out[0] - out[1]));
-        SymTensor::new(
-            mean + deviation * cos2,
-            mean - deviation * cos2,
-            deviation * sin2,
-            out[2],
-        )
     }
 }
 
@@ -551,19 +513,43 @@ fn lode_angle(s: &Principal) -> Real {
     beta - FRAC_PI_3
 }
 
-impl ConstitutiveModel for MohrCoulomb {
-    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) {
-        let mut trial = *stress;
-        self.elastic().update_stress(&mut trial, step);
-        *stress = self.return_map(trial);
+impl ElasticPlastic for MohrCoulomb {
+    /// The elastic part.
+    fn elastic(&self) -> LinearElastic {
+        LinearElastic {
+            youngs_modulus: self.youngs_modulus,
+            poisson_ratio: self.poisson_ratio,
+        }
     }
 
-    fn p_wave_modulus(&self) -> Real {
-        self.elastic().p_wave_modulus()
-    }
-
-    fn stored_energy_density(&self, stress: &SymTensor, f: &DMat2) -> Real {
-        self.elastic().stored_energy_density(stress, f)
+    /// Returns a trial stress to the admissible set (see the module docs).
+    fn return_map(&self, trial: SymTensor) -> SymTensor {
+        let centre = 0.5 * (trial.xx + trial.yy);
+        let half = 0.5 * (trial.xx - trial.yy);
+        let radius = (half * half + trial.xy * trial.xy).sqrt();
+        let (cos2, sin2) = if radius > 0.0 {
+            (half / radius, trial.xy / radius)
+        } else {
+            (1.0, 0.0)
+        };
+        // Principal values: major in-plane, minor in-plane, out-of-plane.
+        let values = [centre + radius, centre - radius, trial.zz];
+        let order = descending(&values);
+        let sorted = [values[order[0]], values[order[1]], values[order[2]]];
+        let Some(returned) = Surfaces::new(self).return_principal(sorted) else {
+            return trial;
+        };
+        let mut out = [0.0; 3];
+        for (slot, &index) in order.iter().enumerate() {
+            out[index] = returned[slot];
+        }
+        let (mean, deviation) = (0.5 * (out[0] + out[1]), 0.5 * (out[0] - out[1]));
+        SymTensor::new(
+            mean + deviation * cos2,
+            mean - deviation * cos2,
+            deviation * sin2,
+            out[2],
+        )
     }
 }
 
@@ -571,6 +557,7 @@ impl ConstitutiveModel for MohrCoulomb {
 mod tests {
     use super::*;
     use crate::materials::rotated;
+    use crate::materials::{ConstitutiveModel, PointStep};
 
     /// The paper's pile-penetration sand (section 4.3) with some cohesion so
     /// that the cut-off and the cohesion both matter.
