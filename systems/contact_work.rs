@@ -1,33 +1,39 @@
-//! The work of this step's contact forces, for the energy balance.
+//! The work of this step's tangential contact forces, for the energy balance.
 
-use crate::components::{BlockContacts, BlockId, BodyIndex, MaterialPoints, Pose};
+use crate::components::{BlockContactLaw, BlockContacts, BlockId, BodyIndex, MaterialPoints, Pose};
 use crate::resources::{BodyContacts, ContactWork};
 use bevy_ecs::prelude::*;
 
-/// Adds this step's work of the contact forces on the relative motion of
-/// what they join to `ContactWork`: for a point–block contact, the force on
-/// the point times the point's displacement over the step less that of the
-/// block's surface point it touched; for a point–point contact, the force on
-/// p times the change of x_p − x_q. Run after the points and the blocks have
-/// moved. Blocks in scene order, contacts in their stored order, body
+/// Adds this step's work of the contacts' tangential forces on the relative
+/// motion of what they join to `ContactWork`, and records their springs'
+/// energy: for a point–block contact, the tangential force on the point
+/// times the point's displacement over the step less that of the block's
+/// surface point it touched; for a point–point contact, the tangential force
+/// on p times the change of x_p − x_q. Run after the points and the blocks
+/// have moved. Blocks in scene order, contacts in their stored order, body
 /// contacts after them: one fixed order of summation.
 ///
-/// Reads: `BlockContacts`, `Pose`, `BodyContacts`, `MaterialPoints::position`.
-/// Writes: `ContactWork`.
+/// Only the tangential part is taken: the normal spring k_n δ is a potential
+/// of the positions, its energy is in `contact`, and the work of its
+/// force over a step would differ from its change only by the time
+/// integration's error, which belongs to the balance, not to dissipation.
+///
+/// Reads: `BlockId`, `BlockContacts`, `BlockContactLaw`, `Pose`,
+/// `BodyContacts`, `BodyIndex`, `MaterialPoints::position`. Writes: `ContactWork`.
 pub fn account_contact_work(
     mut work: ResMut<ContactWork>,
     body_contacts: Res<BodyContacts>,
     mut order: Local<Vec<(u32, Entity)>>,
     mut slots: Local<Vec<Option<Entity>>>,
     bodies: Query<(Entity, &BodyIndex, &MaterialPoints)>,
-    blocks: Query<(Entity, &BlockId, &Pose, &BlockContacts)>,
+    blocks: Query<(Entity, &BlockId, &Pose, &BlockContacts, &BlockContactLaw)>,
 ) {
-    let mut sum = work.work;
+    let (mut done, mut stored) = (work.tangential_work, 0.0);
     order.clear();
     order.extend(blocks.iter().map(|(e, id, ..)| (id.index, e)));
     order.sort_unstable();
     for (_, entity) in order.iter() {
-        let Ok((_, _, pose, contacts)) = blocks.get(*entity) else {
+        let Ok((_, _, pose, contacts, law)) = blocks.get(*entity) else {
             continue;
         };
         for c in &contacts.current {
@@ -36,7 +42,8 @@ pub fn account_contact_work(
             };
             let moved = points.position[c.point as usize] - c.from;
             let surface_moved = pose.to_world(c.at_on_block) - c.at;
-            sum += c.force.dot(moved - surface_moved);
+            done += c.tangential.dot(moved - surface_moved);
+            stored += c.tangential.length_squared() / (2.0 * law.0.tangential_stiffness);
         }
     }
     if !body_contacts.current.is_empty() {
@@ -54,10 +61,17 @@ pub fn account_contact_work(
             Some(points.position[point as usize])
         };
         for c in &body_contacts.current {
-            if let (Some(xp), Some(xq)) = (position(c.a, c.p), position(c.b, c.q)) {
-                sum += c.force.dot(xp - xq - c.separation);
-            }
+            let (Some(xp), Some(xq), Some(law)) = (
+                position(c.a, c.p),
+                position(c.b, c.q),
+                body_contacts.law(c.a, c.b),
+            ) else {
+                continue;
+            };
+            done += c.tangential.dot(xp - xq - c.separation);
+            stored += c.tangential.length_squared() / (2.0 * law.tangential_stiffness);
         }
     }
-    work.work = sum;
+    work.tangential_work = done;
+    work.tangential_energy = stored;
 }

@@ -137,7 +137,7 @@ pub fn record_probes_and_energy(
         .filter_map(|(_, e)| blocks.get(*e).ok())
         .flat_map(|(_, _, contacts)| contacts.current.iter().map(|c| c.potential))
         .fold(body_contacts.potential_energy(), |sum, p| sum + p);
-    sample.dissipated = -work.work - sample.contact;
+    sample.dissipated = -work.tangential_work - work.tangential_energy;
     energy.samples.push(sample);
 }
 

@@ -70,9 +70,10 @@ fn colliding_rings_rebound_and_stay_whole() {
     let log = sim.world().resource::<mpdem::resources::EnergyLog>();
     let (first, last) = (log.samples[0], *log.samples.last().unwrap());
     let balance_drift = last.balance() / first.balance() - 1.0;
+    let widest = widest_balance_swing(&log.samples);
     println!(
         "two rings: centre velocities {:.2} / {:.2} m/s, reach {:.4} / {:.4} m, energy drift {:+.2}%, \
-         contacts dissipated {:.1} J/m ({:.2}%), total + dissipated drift {:+.2}%",
+         contacts dissipated {:.1} J/m ({:.2}%), total + dissipated drift {:+.2}% (widest swing {:.2}%)",
         v_left.x,
         v_right.x,
         reaches[0],
@@ -80,7 +81,8 @@ fn colliding_rings_rebound_and_stay_whole() {
         100.0 * (last.total() / first.total() - 1.0),
         last.dissipated,
         100.0 * last.dissipated / first.total(),
-        100.0 * balance_drift
+        100.0 * balance_drift,
+        100.0 * widest
     );
     // Rebound: the relative velocity of the centres has reversed.
     assert!(v_left.x - v_right.x < 0.0, "{v_left} vs {v_right}");
@@ -90,12 +92,67 @@ fn colliding_rings_rebound_and_stay_whole() {
     for r in reaches {
         assert!(r < 1.25 * 0.04, "a point is {r} m from its ring's centre");
     }
-    // The energy the contacts took and do not hold (measured 4.9% of the
-    // initial energy: friction on the interlocked surface points) closes the
-    // balance up to the MPM scheme's own loss, held to the issue's 5%
-    // (measured −3.4%; −2.5% for the frictionless rings). A contact work
-    // with the wrong sign or a missed pair would leave −13% or −8%.
+    // What the contacts' tangential forces took and their springs do not
+    // hold (measured 5.9% of the initial energy: friction on the interlocked
+    // surface points) closes the balance up to the MPM scheme's own loss,
+    // held to the issue's 5% (measured −2.4%, as the frictionless rings'
+    // −2.5%). A work with the wrong sign would leave −14%, none −8.3%.
     assert!(balance_drift.abs() <= 0.05, "balance drift {balance_drift}");
+    // The same bound at every sample, through the impact, where the contact
+    // springs hold energy: their potential is in the balance.
+    assert!(widest <= 0.05, "balance swings by {widest}");
+}
+
+/// The largest relative departure of the energy balance from its start.
+fn widest_balance_swing(samples: &[mpdem::resources::EnergySample]) -> Real {
+    let start = samples[0].balance();
+    samples
+        .iter()
+        .map(|s| (s.balance() / start - 1.0).abs())
+        .fold(0.0, Real::max)
+}
+
+#[test]
+fn a_ring_thrown_at_a_rigid_wall_keeps_its_energy_balance() {
+    // The left ring of the scene at +30 m/s against a fixed wall where the
+    // right ring was, one point per cell (the balance, not the rebound, is
+    // checked), with the rings' law: the point–block springs' energy and
+    // friction enter the balance.
+    let text = std::fs::read_to_string(common::scene_path("two_rings.ron")).expect("scene");
+    let right = text
+        .find("        (\n            name: \"right\"")
+        .expect("right ring");
+    let output = text.find("    output:").expect("output");
+    let wall = "    ],\n    blocks: [(\n        name: \"wall\",\n        shape: Cuboid(half_extents: (0.01, 0.1)),\n        \
+                position: (0.1, 0.05),\n        motion: Fixed,\n        \
+                contact: (normal_stiffness: 1e7, tangential_stiffness: 1e7, friction: 0.2),\n    )],\n";
+    let text = format!("{}{wall}{}", &text[..right], &text[output..]);
+    let mut scene =
+        Scene::parse(&text, &common::scene_path("ring_wall.ron")).unwrap_or_else(|e| panic!("{e}"));
+    scene.bodies[0].points_per_cell = 1;
+    let sim = common::run_scene(&scene);
+    let samples = &sim
+        .world()
+        .resource::<mpdem::resources::EnergyLog>()
+        .samples;
+    let last = samples[samples.len() - 1];
+    let peak_contact = samples.iter().map(|s| s.contact).fold(0.0, Real::max);
+    let widest = widest_balance_swing(samples);
+    println!(
+        "ring on a wall: energy {:.1} -> {:.1} J/m, contact springs up to {:.1} J/m, dissipated {:.2} J/m, \
+         balance widest swing {:.2}%",
+        samples[0].total(),
+        last.total(),
+        peak_contact,
+        last.dissipated,
+        100.0 * widest
+    );
+    // The springs hold 9.5% of the energy at the impact (measured), so
+    // leaving them out would show; what the balance still moves by is the
+    // scheme's own error, measured 0.5% (the energy itself falls 4.4%, the
+    // tangential forces having taken 4.5%).
+    assert!(peak_contact > 0.05 * samples[0].total(), "{peak_contact}");
+    assert!(widest <= 0.02, "balance swings by {widest}");
 }
 
 #[test]

@@ -88,10 +88,12 @@ pub struct EnergySample {
     /// Gravity's potential relative to the initial positions,
     /// −Σ m_p g · (x_p − X_p) (J/m), with the gravity of the time.
     pub gravity: Real,
-    /// Energy the point contacts have taken from the bodies since the start
-    /// and do not hold in their springs (J/m): −W − `contact`, W the work of
-    /// their forces on the relative motion ([`crate::resources::ContactWork`]).
-    /// Friction's dissipation, plus the springs' time-integration error.
+    /// Energy the point contacts' tangential forces have taken from the
+    /// bodies since the start and their springs do not hold (J/m): −W_t −
+    /// Σ |f_t|²/(2 k_t), W_t their work on the actual relative motion
+    /// ([`crate::resources::ContactWork`]). Coulomb sliding, and the springs'
+    /// stretching by the material velocity where it differs from the actual
+    /// motion. The normal dashpot's work (`normal_damping`) is not in it.
     pub dissipated: Real,
 }
 
