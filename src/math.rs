@@ -49,6 +49,15 @@ impl SymTensor {
         self.xx + self.yy + self.zz
     }
 
+    /// Mean normal stress tr σ / 3 and the deviator σ − (tr σ / 3) I.
+    pub fn mean_and_deviator(&self) -> (Real, Self) {
+        let mean = self.trace3() / 3.0;
+        (
+            mean,
+            Self::new(self.xx - mean, self.yy - mean, self.xy, self.zz - mean),
+        )
+    }
+
     /// Full double contraction a : b, counting the shear component twice.
     pub fn contract(&self, other: &Self) -> Real {
         self.xx * other.xx + self.yy * other.yy + self.zz * other.zz + 2.0 * self.xy * other.xy

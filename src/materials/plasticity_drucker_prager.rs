@@ -88,13 +88,7 @@ impl DruckerPrager {
 
 /// Mean stress σ_m, deviator s and τ = √J₂ of a plane-strain stress.
 fn invariants(stress: &SymTensor) -> (Real, SymTensor, Real) {
-    let mean = stress.trace3() / 3.0;
-    let s = SymTensor::new(
-        stress.xx - mean,
-        stress.yy - mean,
-        stress.xy,
-        stress.zz - mean,
-    );
+    let (mean, s) = stress.mean_and_deviator();
     (mean, s, (0.5 * s.contract(&s)).sqrt())
 }
 

@@ -576,13 +576,7 @@ mod tests {
     /// q = √(3 J₂) and cos 3Θ = 27 J₃ / (2 q³).
     fn invariant_form(model: &MohrCoulomb, stress: &SymTensor) -> Real {
         let phi = model.friction_angle.to_radians();
-        let mean = stress.trace3() / 3.0;
-        let s = SymTensor::new(
-            stress.xx - mean,
-            stress.yy - mean,
-            stress.xy,
-            stress.zz - mean,
-        );
+        let (mean, s) = stress.mean_and_deviator();
         let (p, q) = (-mean, (1.5 * s.contract(&s)).sqrt());
         let j3 = s.zz * (s.xx * s.yy - s.xy * s.xy);
         let theta = (13.5 * j3 / (q * q * q)).clamp(-1.0, 1.0).acos() / 3.0;
