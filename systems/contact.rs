@@ -116,7 +116,7 @@ pub fn compute_rigid_contacts(
                     at_on_block: pose.to_block(geometry.point),
                     from: points.position[i],
                     potential: law.normal_stiffness * normal_potential
-                        + f.tangential.length_squared() / (2.0 * law.tangential_stiffness),
+                        + law.tangential_energy(f.tangential),
                 })
             })
             .collect_into_vec(&mut found);

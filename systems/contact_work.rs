@@ -1,12 +1,11 @@
 //! The work of this step's tangential contact forces, for the energy balance.
 
-use crate::components::{BlockContactLaw, BlockContacts, BlockId, BodyIndex, MaterialPoints, Pose};
+use crate::components::{BlockContacts, BlockId, BodyIndex, MaterialPoints, Pose};
 use crate::resources::{BodyContacts, ContactWork};
 use bevy_ecs::prelude::*;
 
 /// Adds this step's work of the contacts' tangential forces on the relative
-/// motion of what they join to `ContactWork`, and records their springs'
-/// energy: for a point–block contact, the tangential force on the point
+/// motion of what they join to `ContactWork`: for a point–block contact, the tangential force on the point
 /// times the point's displacement over the step less that of the block's
 /// surface point it touched; for a point–point contact, the tangential force
 /// on p times the change of x_p − x_q. Run after the points and the blocks
@@ -18,7 +17,7 @@ use bevy_ecs::prelude::*;
 /// force over a step would differ from its change only by the time
 /// integration's error, which belongs to the balance, not to dissipation.
 ///
-/// Reads: `BlockId`, `BlockContacts`, `BlockContactLaw`, `Pose`,
+/// Reads: `BlockId`, `BlockContacts`, `Pose`,
 /// `BodyContacts`, `BodyIndex`, `MaterialPoints::position`. Writes: `ContactWork`.
 pub fn account_contact_work(
     mut work: ResMut<ContactWork>,
@@ -26,14 +25,14 @@ pub fn account_contact_work(
     mut order: Local<Vec<(u32, Entity)>>,
     mut slots: Local<Vec<Option<Entity>>>,
     bodies: Query<(Entity, &BodyIndex, &MaterialPoints)>,
-    blocks: Query<(Entity, &BlockId, &Pose, &BlockContacts, &BlockContactLaw)>,
+    blocks: Query<(Entity, &BlockId, &Pose, &BlockContacts)>,
 ) {
-    let (mut done, mut stored) = (work.tangential_work, 0.0);
+    let mut done = work.tangential_work;
     order.clear();
     order.extend(blocks.iter().map(|(e, id, ..)| (id.index, e)));
     order.sort_unstable();
     for (_, entity) in order.iter() {
-        let Ok((_, _, pose, contacts, law)) = blocks.get(*entity) else {
+        let Ok((_, _, pose, contacts)) = blocks.get(*entity) else {
             continue;
         };
         for c in &contacts.current {
@@ -43,7 +42,6 @@ pub fn account_contact_work(
             let moved = points.position[c.point as usize] - c.from;
             let surface_moved = pose.to_world(c.at_on_block) - c.at;
             done += c.tangential.dot(moved - surface_moved);
-            stored += c.tangential.length_squared() / (2.0 * law.0.tangential_stiffness);
         }
     }
     if !body_contacts.current.is_empty() {
@@ -61,17 +59,10 @@ pub fn account_contact_work(
             Some(points.position[point as usize])
         };
         for c in &body_contacts.current {
-            let (Some(xp), Some(xq), Some(law)) = (
-                position(c.a, c.p),
-                position(c.b, c.q),
-                body_contacts.law(c.a, c.b),
-            ) else {
-                continue;
-            };
-            done += c.tangential.dot(xp - xq - c.separation);
-            stored += c.tangential.length_squared() / (2.0 * law.tangential_stiffness);
+            if let (Some(xp), Some(xq)) = (position(c.a, c.p), position(c.b, c.q)) {
+                done += c.tangential.dot(xp - xq - c.separation);
+            }
         }
     }
     work.tangential_work = done;
-    work.tangential_energy = stored;
 }

@@ -1,8 +1,8 @@
 //! End of the step: finiteness check, clock, probes, energies, blocks and body pairs.
 
 use crate::components::{
-    BlockContacts, BlockId, BodyIndex, BodyName, Material, MaterialPoints, PartReactions,
-    PointEnergies, Pose, Reaction, RigidVelocity, sort_into_scene_order,
+    BlockContactLaw, BlockContacts, BlockId, BodyIndex, BodyName, Material, MaterialPoints,
+    PartReactions, PointEnergies, Pose, Reaction, RigidVelocity, sort_into_scene_order,
 };
 use crate::resources::{
     BlockLog, BlockPartSample, BlockSample, BodyContacts, BodyPairLog, BodyPairSample, Clock,
@@ -103,8 +103,8 @@ type EnergyScratch = (
 /// failed (a broken state is never recorded).
 ///
 /// Reads: `Clock`, `Diagnostics`, `Gravity`, `MaterialPoints`, `Material`,
-/// `BodyIndex`, `BodyContacts` and `BlockContacts` (the contact springs'
-/// energy), `ContactWork`. Writes: `Probes`, `EnergyLog`.
+/// `BodyIndex`, `BodyContacts`, `BlockContacts` and `BlockContactLaw` (the
+/// contact springs' energy), `ContactWork`. Writes: `Probes`, `EnergyLog`.
 #[allow(clippy::too_many_arguments)] // one resource or query per energy term
 pub fn record_probes_and_energy(
     clock: Res<Clock>,
@@ -116,7 +116,7 @@ pub fn record_probes_and_energy(
     work: Res<ContactWork>,
     mut scratch: Local<EnergyScratch>,
     bodies: Query<(Entity, &BodyIndex, &MaterialPoints, &Material)>,
-    blocks: Query<(Entity, &BlockId, &BlockContacts)>,
+    blocks: Query<(Entity, &BlockId, &BlockContacts, &BlockContactLaw)>,
 ) {
     if diagnostics.failure.is_some() || !clock.step.is_multiple_of(probes.every.max(1)) {
         return;
@@ -130,14 +130,17 @@ pub fn record_probes_and_energy(
         .map(|b| (b.2, b.3));
     let mut sample = EnergySample::of(clock.time, ordered, gravity.0, sums);
     block_order.clear();
-    block_order.extend(blocks.iter().map(|(e, id, _)| (id.index, e)));
+    block_order.extend(blocks.iter().map(|(e, id, ..)| (id.index, e)));
     block_order.sort_unstable();
-    sample.contact = block_order
-        .iter()
-        .filter_map(|(_, e)| blocks.get(*e).ok())
-        .flat_map(|(_, _, contacts)| contacts.current.iter().map(|c| c.potential))
-        .fold(body_contacts.potential_energy(), |sum, p| sum + p);
-    sample.dissipated = -work.tangential_work - work.tangential_energy;
+    let (mut springs, mut tangential) = body_contacts.spring_energies();
+    for (_, _, contacts, law) in block_order.iter().filter_map(|(_, e)| blocks.get(*e).ok()) {
+        for c in &contacts.current {
+            springs += c.potential;
+            tangential += law.0.tangential_energy(c.tangential);
+        }
+    }
+    sample.contact = springs;
+    sample.dissipated = -work.tangential_work - tangential;
     energy.samples.push(sample);
 }
 

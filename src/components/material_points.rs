@@ -36,6 +36,17 @@ pub struct PointEnergies {
     pub gravity: Real,
 }
 
+impl std::ops::Add for PointEnergies {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Self {
+            kinetic: self.kinetic + o.kinetic,
+            strain: self.strain + o.strain,
+            gravity: self.gravity + o.gravity,
+        }
+    }
+}
+
 /// The largest distance any point of the body moved in the last
 /// grid-to-particle update (m). The contact broad phase adds it up to know
 /// when a point may have left a neighbour list's margin.
@@ -149,11 +160,7 @@ impl MaterialPoints {
             .collect_into_vec(chunk_sums);
         chunk_sums
             .iter()
-            .fold(PointEnergies::default(), |sum, chunk| PointEnergies {
-                kinetic: sum.kinetic + chunk.kinetic,
-                strain: sum.strain + chunk.strain,
-                gravity: sum.gravity + chunk.gravity,
-            })
+            .fold(PointEnergies::default(), |sum, chunk| sum + *chunk)
     }
 
     /// Total linear momentum Σ m_p V_p.

@@ -43,6 +43,12 @@ impl ContactLaw {
         non_negative("normal_damping", self.normal_damping)
     }
 
+    /// Energy held by a tangential spring of force `tangential`:
+    /// |f_t|² / (2 k_t) (J/m).
+    pub fn tangential_energy(&self, tangential: DVec2) -> Real {
+        tangential.length_squared() / (2.0 * self.tangential_stiffness)
+    }
+
     /// The law of a contact between two blocks with laws `self` and `other`:
     /// the softer stiffnesses, the smaller friction and the larger damping.
     pub fn pair(&self, other: &ContactLaw) -> ContactLaw {

@@ -31,9 +31,9 @@ pub fn write_probes(path: &Path, probes: &Probes) -> std::io::Result<()> {
 /// Writes `energy.csv`: time, kinetic, strain, contact, total, gravity,
 /// dissipated, balance (J per metre of thickness). `total` sums the
 /// kinetic, strain and contact (the point contacts' springs) energies,
-/// conserved by free elastic bodies; `balance` adds gravity's potential and what the contacts
-/// dissipated (see [`crate::resources::EnergySample::balance`] for what it
-/// still leaves out).
+/// conserved by free elastic bodies; `balance` adds gravity's potential and
+/// what the contacts dissipated (see
+/// [`crate::resources::EnergySample::balance`] for what it still leaves out).
 pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     writeln!(

@@ -206,18 +206,19 @@ impl BodyContacts {
         law_between(&self.laws, i, j)
     }
 
-    /// Contact potential energy Σ ½ k_n δ² + |f_t|² / (2 k_t) (J/m).
-    pub fn potential_energy(&self) -> Real {
+    /// Energy of this step's contact springs, (Σ ½ k_n δ² + |f_t|² / (2 k_t),
+    /// its tangential part Σ |f_t|² / (2 k_t)) (J/m).
+    pub fn spring_energies(&self) -> (Real, Real) {
         self.current
             .iter()
-            .filter_map(|c| {
-                let law = self.law(c.a, c.b)?;
-                Some(
-                    0.5 * law.normal_stiffness * c.overlap * c.overlap
-                        + c.tangential.length_squared() / (2.0 * law.tangential_stiffness),
+            .filter_map(|c| Some((c, self.law(c.a, c.b)?)))
+            .fold((0.0, 0.0), |(all, tangential), (c, law)| {
+                let t = law.tangential_energy(c.tangential);
+                (
+                    all + 0.5 * law.normal_stiffness * c.overlap * c.overlap + t,
+                    tangential + t,
                 )
             })
-            .fold(0.0, |sum, e| sum + e)
     }
 }
 

@@ -3,11 +3,10 @@
 use crate::math::Real;
 use bevy_ecs::prelude::Resource;
 
-/// The point contacts' (point–block and point–point) tangential forces:
-/// their work on the actual relative motion of what they join since the
-/// start of the run, and their springs' energy now (J/m). What the work took
-/// and the springs do not hold was dissipated (see
-/// [`crate::resources::EnergySample::dissipated`]).
+/// The work of the point contacts' (point–block and point–point)
+/// tangential forces on the actual relative motion of what they join since
+/// the start of the run (J/m). What it took and their springs do not hold
+/// was dissipated (see [`crate::resources::EnergySample::dissipated`]).
 #[derive(Resource, Clone, Copy, Debug, Default, PartialEq)]
 pub struct ContactWork {
     /// Σ over steps and contacts of f_t · Δ(x_p − x_other), with Δ the
@@ -16,6 +15,4 @@ pub struct ContactWork {
     /// found at the step's start (J/m). Negative when the contacts take
     /// energy.
     pub tangential_work: Real,
-    /// Σ |f_t|² / (2 k_t) over this step's contacts (J/m).
-    pub tangential_energy: Real,
 }
