@@ -3,9 +3,7 @@
 use crate::components::{GridLayer, MaterialPoints, TransferScratch};
 use crate::math::{DVec2, local_damping};
 use crate::resources::{Clock, Grid, Settings, SharedLayers};
-use crate::transfer::MIN_NODES_PER_TASK;
 use bevy_ecs::prelude::*;
-use rayon::prelude::*;
 
 /// Scatters the internal force f_i,int = −Σ_p V_p σ_p · G_ip, sums it over
 /// the layers of a contact group (`SharedLayers`), then per node
@@ -49,19 +47,15 @@ pub fn solve_nodal_momentum(
     );
     for (_, mut layer, _) in &mut bodies {
         let cutoff = layer.mass_cutoff;
-        layer
-            .nodes
-            .par_iter_mut()
-            .with_min_len(MIN_NODES_PER_TASK)
-            .for_each(|n| {
-                if n.mass <= cutoff {
-                    n.velocity_new = DVec2::ZERO;
-                    return;
-                }
-                let force = n.external_force + n.internal_force;
-                n.momentum += local_damping(force, n.velocity, alpha) * dt;
-                n.velocity_new = n.momentum / n.mass;
-            });
+        layer.for_each_active(|n| {
+            if n.mass <= cutoff {
+                n.velocity_new = DVec2::ZERO;
+                return;
+            }
+            let force = n.external_force + n.internal_force;
+            n.momentum += local_damping(force, n.velocity, alpha) * dt;
+            n.velocity_new = n.momentum / n.mass;
+        });
         layer.apply_constraints(|n| &mut n.velocity_new);
     }
 }

@@ -10,9 +10,7 @@ use crate::resources::{
     Clock, ContactSettings, Diagnostics, Gravity, Grid, NumericalFailure, Settings, SharedLayers,
 };
 use crate::shape_functions::Stencil;
-use crate::transfer::MIN_NODES_PER_TASK;
 use bevy_ecs::prelude::*;
-use rayon::prelude::*;
 
 /// The resources P2G reads.
 type StepInputs<'w> = (
@@ -113,17 +111,13 @@ pub fn particle_to_grid(
     );
     for (.., mut layer, _) in &mut bodies {
         let cutoff = layer.mass_cutoff;
-        layer
-            .nodes
-            .par_iter_mut()
-            .with_min_len(MIN_NODES_PER_TASK)
-            .for_each(|n| {
-                n.velocity = if n.mass > cutoff {
-                    n.momentum / n.mass
-                } else {
-                    DVec2::ZERO
-                };
-            });
+        layer.for_each_active(|n| {
+            n.velocity = if n.mass > cutoff {
+                n.momentum / n.mass
+            } else {
+                DVec2::ZERO
+            };
+        });
         layer.apply_constraints(|n| &mut n.velocity);
     }
 }

@@ -93,6 +93,17 @@ pub struct MaterialPoints {
 }
 
 impl MaterialPoints {
+    /// The smallest box holding every point's position, `None` without
+    /// points (min and max are exact, so the result does not depend on the
+    /// thread count).
+    pub fn bounds(&self) -> Option<(DVec2, DVec2)> {
+        self.position
+            .par_iter()
+            .with_min_len(CHUNK_POINTS)
+            .map(|&x| (x, x))
+            .reduce_with(|(lo, hi), (a, b)| (lo.min(a), hi.max(b)))
+    }
+
     /// Number of points.
     pub fn len(&self) -> usize {
         self.position.len()

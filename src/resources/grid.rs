@@ -1,6 +1,6 @@
 //! The shared background grid and the conditions on its edges.
 
-use crate::components::{Fix, NodeConstraint, RegionConstraint};
+use crate::components::{Fix, NodeConstraint, NodeRect, RegionConstraint};
 use crate::math::{DVec2, Real};
 use crate::shape_functions::StencilGrid;
 use bevy_ecs::prelude::Resource;
@@ -100,6 +100,31 @@ impl Grid {
     /// Upper-right corner (m).
     pub fn max(&self) -> DVec2 {
         self.origin + DVec2::new(self.cells[0] as Real, self.cells[1] as Real) * self.cell_size
+    }
+
+    /// The nodes within `reach` (m) of the box from `lo` to `hi`, clipped to
+    /// the grid; the whole grid if the box is not finite (a point gone
+    /// astray, reported elsewhere).
+    pub fn nodes_near(&self, lo: DVec2, hi: DVec2, reach: Real) -> NodeRect {
+        let nodes = self.nodes();
+        if !(lo.is_finite() && hi.is_finite()) {
+            return NodeRect::whole(nodes);
+        }
+        let index = |x: DVec2| (x - self.origin) / self.cell_size;
+        let (first, last) = (
+            (index(lo) - reach / self.cell_size).floor(),
+            (index(hi) + reach / self.cell_size).ceil(),
+        );
+        NodeRect {
+            start: [
+                (first.x.max(0.0) as usize).min(nodes[0]),
+                (first.y.max(0.0) as usize).min(nodes[1]),
+            ],
+            end: [
+                ((last.x + 1.0).max(0.0) as usize).min(nodes[0]),
+                ((last.y + 1.0).max(0.0) as usize).min(nodes[1]),
+            ],
+        }
     }
 
     /// Position of the node with row-major index `index`.

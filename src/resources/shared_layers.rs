@@ -1,7 +1,6 @@
 //! Contact groups (scene `group`): bodies that share one grid layer.
 
 use crate::components::{GridLayer, GridNode};
-use crate::transfer::MIN_NODES_PER_TASK;
 use bevy_ecs::prelude::{Entity, Resource};
 use rayon::prelude::*;
 
@@ -19,8 +18,9 @@ pub struct SharedLayers {
 }
 
 impl SharedLayers {
-    /// For every group, sums the members' nodes with `add` (into a zeroed
-    /// node) and hands the sum to each member's nodes with `set`.
+    /// For every group, sums the members' active nodes with `add` (into a
+    /// zeroed node) and hands the sum to each member's nodes with `set`
+    /// (the members share one active rectangle, see `reset_grid_layers`).
     /// `visit(entity, f)` must call `f` on that body's layer.
     pub fn share(
         &mut self,
@@ -33,26 +33,31 @@ impl SharedLayers {
             let mut first = true;
             for &member in group {
                 visit(member, &mut |layer: &mut GridLayer| {
+                    let (rect, row_len) = (layer.active, layer.row_len);
                     if first {
-                        total.clear();
                         total.resize(layer.nodes.len(), GridNode::default());
+                        rect.rows_mut(total, row_len)
+                            .for_each(|(_, row)| row.fill(GridNode::default()));
                         first = false;
                     }
-                    total
-                        .par_iter_mut()
-                        .zip(layer.nodes.par_iter())
-                        .with_min_len(MIN_NODES_PER_TASK)
-                        .for_each(|(sum, node)| add(sum, node));
+                    let nodes = &layer.nodes;
+                    rect.rows_mut(total, row_len).for_each(|(j, sums)| {
+                        for (sum, node) in sums.iter_mut().zip(rect.row(nodes, row_len, j)) {
+                            add(sum, node);
+                        }
+                    });
                 });
             }
             for &member in group {
                 visit(member, &mut |layer: &mut GridLayer| {
-                    layer
-                        .nodes
-                        .par_iter_mut()
-                        .zip(total.par_iter())
-                        .with_min_len(MIN_NODES_PER_TASK)
-                        .for_each(|(node, sum)| set(node, sum));
+                    let (rect, row_len) = (layer.active, layer.row_len);
+                    let total = &*total;
+                    rect.rows_mut(&mut layer.nodes, row_len)
+                        .for_each(|(j, nodes)| {
+                            for (node, sum) in nodes.iter_mut().zip(rect.row(total, row_len, j)) {
+                                set(node, sum);
+                            }
+                        });
                 });
             }
         }

@@ -60,7 +60,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
                     model: material.model.clone(),
                 },
                 points,
-                GridLayer::new(grid.node_count(), 1e-9 * lightest),
+                GridLayer::new(grid.nodes(), 1e-9 * lightest),
                 TransferScratch::default(),
                 StepTravel::default(),
                 RegionConstraints(spec.constraints.clone()),
