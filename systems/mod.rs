@@ -52,9 +52,10 @@ pub struct MpmSchedule;
 pub enum MpmSystems {
     /// Empty: a hook for user systems at the start of the step.
     First,
-    /// Zero every layer (l. 2).
+    /// Zero every layer's active nodes and set them from the points (l. 2);
+    /// from here until `ParticleToGrid`, points must not move.
     GridReset,
-    /// Stage events, prescribed motions, boundary conditions (l. 3).
+    /// Stage events, prescribed motions of blocks, boundary conditions (l. 3).
     Boundary,
     /// Rebuild contact neighbour lists every `iterperiod` steps (l. 5–8).
     Neighbours,

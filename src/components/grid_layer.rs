@@ -129,10 +129,11 @@ impl NodeRect {
 /// after every scatter ([`crate::resources::SharedLayers`]).
 ///
 /// Only the nodes of `active`, around the body's points, are reset and
-/// solved each step, so a small body on a large grid costs what its own
-/// nodes cost. Every node outside `active` holds zero: a system that writes
-/// nodes must stay inside it.
-#[derive(Component, Clone, Debug, Default)]
+/// solved each step (XPIC's smoothing still runs over every node). Every
+/// node outside `active` holds zero: a system that writes nodes must stay
+/// inside it, and points must not move between `GridReset` and
+/// `ParticleToGrid`, as `active` is set from their positions at the reset.
+#[derive(Component, Clone, Debug)]
 pub struct GridLayer {
     /// Nodal quantities.
     pub nodes: Vec<GridNode>,

@@ -94,13 +94,19 @@ pub struct MaterialPoints {
 
 impl MaterialPoints {
     /// The smallest box holding every point's position, `None` without
-    /// points (min and max are exact, so the result does not depend on the
-    /// thread count).
+    /// points, unbounded if a position is not finite (min and max are
+    /// exact, so the result does not depend on the thread count).
     pub fn bounds(&self) -> Option<(DVec2, DVec2)> {
         self.position
             .par_iter()
             .with_min_len(CHUNK_POINTS)
-            .map(|&x| (x, x))
+            .map(|&x| {
+                if x.is_finite() {
+                    (x, x)
+                } else {
+                    (DVec2::NEG_INFINITY, DVec2::INFINITY)
+                }
+            })
             .reduce_with(|(lo, hi), (a, b)| (lo.min(a), hi.max(b)))
     }
 

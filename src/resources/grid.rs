@@ -58,12 +58,6 @@ impl Grid {
         [self.cells[0] + 1, self.cells[1] + 1]
     }
 
-    /// Total number of nodes.
-    pub fn node_count(&self) -> usize {
-        let [nx, ny] = self.nodes();
-        nx * ny
-    }
-
     /// The grid as the shape functions see it: walls where an edge is fixed or slip.
     pub fn stencil_grid(&self) -> StencilGrid {
         StencilGrid {
