@@ -3,7 +3,7 @@
 
 use crate::components::{
     BlockContactLaw, BlockContacts, BlockId, MaterialPoints, NeighbourList, PartReactions,
-    PointContact, Pose, Reaction, RigidMass, RigidShape, RigidVelocity,
+    PointContact, Pose, Reaction, RigidMass, RigidShape, RigidVelocity, sort_into_scene_order,
 };
 use crate::contact::{disk_shape_contact, overlap_area, overlap_area_integral, pair_force};
 use crate::math::{DVec2, Real};
@@ -64,9 +64,7 @@ pub fn compute_rigid_contacts(
     if blocks.is_empty() {
         return;
     }
-    order.clear();
-    order.extend(blocks.iter().map(|(e, b)| (b.0.index, e)));
-    order.sort_unstable();
+    sort_into_scene_order(&mut order, blocks.iter().map(|(e, b)| (b.0.index, e)));
     for (_, entity) in order.iter() {
         let Ok((
             _,

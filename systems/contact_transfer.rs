@@ -34,9 +34,7 @@ pub fn transfer_contact_forces(
     // Scenes are validated to at least 1; a system changing the setting at
     // run time must not make the split divide by zero.
     let count = count.max(1);
-    order.clear();
-    order.extend(blocks.iter().map(|(e, id, _)| (id.index, e)));
-    order.sort_unstable();
+    sort_into_scene_order(&mut order, blocks.iter().map(|(e, id, _)| (id.index, e)));
     for (_, entity) in order.iter() {
         let Ok((_, _, contacts)) = blocks.get(*entity) else {
             continue;

@@ -1,6 +1,8 @@
 //! The work of this step's tangential contact forces, for the energy balance.
 
-use crate::components::{BlockContacts, BlockId, BodyIndex, MaterialPoints, Pose};
+use crate::components::{
+    BlockContacts, BlockId, BodyIndex, MaterialPoints, Pose, sort_into_scene_order,
+};
 use crate::resources::{BodyContacts, ContactWork};
 use bevy_ecs::prelude::*;
 
@@ -28,9 +30,7 @@ pub fn account_contact_work(
     blocks: Query<(Entity, &BlockId, &Pose, &BlockContacts)>,
 ) {
     let mut done = work.tangential_work;
-    order.clear();
-    order.extend(blocks.iter().map(|(e, id, ..)| (id.index, e)));
-    order.sort_unstable();
+    sort_into_scene_order(&mut order, blocks.iter().map(|(e, id, ..)| (id.index, e)));
     for (_, entity) in order.iter() {
         let Ok((_, _, pose, contacts)) = blocks.get(*entity) else {
             continue;

@@ -129,9 +129,7 @@ pub fn record_probes_and_energy(
         .filter_map(|(_, e)| bodies.get(*e).ok())
         .map(|b| (b.2, b.3));
     let mut sample = EnergySample::of(clock.time, ordered, gravity.0, sums);
-    block_order.clear();
-    block_order.extend(blocks.iter().map(|(e, id, ..)| (id.index, e)));
-    block_order.sort_unstable();
+    sort_into_scene_order(block_order, blocks.iter().map(|(e, id, ..)| (id.index, e)));
     let (mut springs, mut tangential) = body_contacts.spring_energies();
     for (_, _, contacts, law) in block_order.iter().filter_map(|(_, e)| blocks.get(*e).ok()) {
         for c in &contacts.current {
@@ -200,9 +198,7 @@ pub fn record_blocks(
     {
         return;
     }
-    order.clear();
-    order.extend(blocks.iter().map(|(e, id, ..)| (id.index, e)));
-    order.sort_unstable();
+    sort_into_scene_order(&mut order, blocks.iter().map(|(e, id, ..)| (id.index, e)));
     for (_, entity) in order.iter() {
         let Ok((_, id, reaction, parts, pose, velocity)) = blocks.get(*entity) else {
             continue;

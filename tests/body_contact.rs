@@ -70,11 +70,11 @@ fn colliding_rings_rebound_and_stay_whole() {
     let (_, v_left) = centre(&mut sim, "left");
     let (_, v_right) = centre(&mut sim, "right");
     let reaches = [reach(&mut sim, "left"), reach(&mut sim, "right")];
-    let log = sim.world().resource::<mpdem::resources::EnergyLog>();
-    let (first, last) = (log.samples[0], *log.samples.last().unwrap());
+    let samples = energy_samples(&sim);
+    let (first, last) = (samples[0], samples[samples.len() - 1]);
     let drift = last.total() / first.total() - 1.0;
     let balance_drift = last.balance() / first.balance() - 1.0;
-    let widest = widest_balance_swing(&log.samples);
+    let widest = widest_balance_swing(samples);
     println!(
         "two rings: centre velocities {:.2} / {:.2} m/s, reach {:.4} / {:.4} m, energy drift {:+.2}%, \
          contacts dissipated {:.1} J/m ({:.2}%), total + dissipated drift {:+.2}% (widest swing {:.2}%)",
@@ -140,10 +140,7 @@ fn a_ring_thrown_at_a_rigid_wall_keeps_its_energy_balance() {
     scene.bodies[0].points_per_cell = 1;
     scene.bodies[0].contact_radius = None;
     let sim = common::run_scene(&scene);
-    let samples = &sim
-        .world()
-        .resource::<mpdem::resources::EnergyLog>()
-        .samples;
+    let samples = energy_samples(&sim);
     let last = samples[samples.len() - 1];
     let peak_contact = samples.iter().map(|s| s.contact).fold(0.0, Real::max);
     let widest = widest_balance_swing(samples);
@@ -227,10 +224,7 @@ fn disks_that_only_reach_the_outline_interlock_and_dissipate() {
             .unwrap_or(0)
     };
     let dissipated = |sim: &Simulation| {
-        let samples = &sim
-            .world()
-            .resource::<mpdem::resources::EnergyLog>()
-            .samples;
+        let samples = energy_samples(sim);
         samples[samples.len() - 1].dissipated / samples[0].total()
     };
     let mut half = rings(false, true);
@@ -347,12 +341,16 @@ fn bad_body_contacts_are_refused() {
     assert!(message.contains("more than half a cell"), "{message}");
 }
 
+/// The energies a run recorded.
+fn energy_samples(sim: &Simulation) -> &[mpdem::resources::EnergySample] {
+    &sim.world()
+        .resource::<mpdem::resources::EnergyLog>()
+        .samples
+}
+
 /// Relative change of kinetic + strain + contact energy over a run.
 fn energy_drift(sim: &Simulation) -> Real {
-    let samples = &sim
-        .world()
-        .resource::<mpdem::resources::EnergyLog>()
-        .samples;
+    let samples = energy_samples(sim);
     let (first, last) = (samples[0].total(), samples[samples.len() - 1].total());
     last / first - 1.0
 }

@@ -15,14 +15,15 @@ pub struct BodyName(pub String);
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub struct BodyIndex(pub u32);
 
-/// Fills `order` with `bodies` sorted by scene index, reusing its storage:
-/// every loop whose results meet across bodies visits them in this order.
-pub fn sort_into_scene_order(
-    order: &mut Vec<(BodyIndex, Entity)>,
-    bodies: impl Iterator<Item = (BodyIndex, Entity)>,
+/// Fills `order` with `entities` (bodies by `BodyIndex`, blocks by their
+/// index) sorted by scene index, reusing its storage: every loop whose
+/// results meet across bodies or blocks visits them in this order.
+pub fn sort_into_scene_order<K: Ord>(
+    order: &mut Vec<(K, Entity)>,
+    entities: impl Iterator<Item = (K, Entity)>,
 ) {
     order.clear();
-    order.extend(bodies);
+    order.extend(entities);
     order.sort_unstable();
 }
 

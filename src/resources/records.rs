@@ -107,21 +107,17 @@ impl EnergySample {
         gravity: DVec2,
         scratch: &mut Vec<PointEnergies>,
     ) -> Self {
-        let mut sample = Self {
+        let sum = bodies.fold(PointEnergies::default(), |sum, (points, material)| {
+            sum + points.energies(material.model.as_model(), gravity, scratch)
+        });
+        Self {
             time,
-            kinetic: 0.0,
-            strain: 0.0,
+            kinetic: sum.kinetic,
+            strain: sum.strain,
             contact: 0.0,
-            gravity: 0.0,
+            gravity: sum.gravity,
             dissipated: 0.0,
-        };
-        for (points, material) in bodies {
-            let energies = points.energies(material.model.as_model(), gravity, scratch);
-            sample.kinetic += energies.kinetic;
-            sample.strain += energies.strain;
-            sample.gravity += energies.gravity;
         }
-        sample
     }
 
     /// Kinetic + strain + contact energy (J/m): conserved by a free elastic
