@@ -6,6 +6,7 @@
 //! thickness, so masses, forces and energies are per metre.
 
 mod location;
+pub mod point_file;
 pub mod rules;
 mod shapes;
 mod spawn;
@@ -15,6 +16,7 @@ mod validate;
 mod velocity_field;
 
 pub use location::SourceLocation;
+pub use point_file::ListedPoint;
 pub use shapes::Shape;
 pub use spawn::spawn_scene;
 pub use spawn_blocks::spawn_block;
@@ -402,8 +404,41 @@ impl Scene {
         if scene.name.is_none() {
             scene.name = path.file_stem().map(|s| s.to_string_lossy().into_owned());
         }
+        let folder = path.parent().unwrap_or(Path::new(""));
+        if let Err((body, message)) = scene.read_point_files_in(folder) {
+            return Err(SceneError::Invalid {
+                location: SourceLocation::find(
+                    source,
+                    path,
+                    &["bodies", &format!("\"{body}\""), "shape"],
+                ),
+                message,
+            });
+        }
         scene.validate_in(Some((source, path)))?;
         Ok(scene)
+    }
+
+    /// Reads the file of every `Points` body, relative to `folder` (the
+    /// scene file's folder; [`Self::load`] and [`Self::parse`] do this). The
+    /// error names the body, the file, its line and what was expected.
+    pub fn read_point_files(&mut self, folder: &Path) -> Result<(), SceneError> {
+        self.read_point_files_in(folder)
+            .map_err(|(_, message)| SceneError::Invalid {
+                location: SourceLocation::default(),
+                message,
+            })
+    }
+
+    /// [`Self::read_point_files`], the error with the body's name.
+    fn read_point_files_in(&mut self, folder: &Path) -> Result<(), (String, String)> {
+        for body in &mut self.bodies {
+            if let Shape::Points { file, points } = &mut body.shape {
+                *points = point_file::read_point_file(&folder.join(&*file))
+                    .map_err(|e| (body.name.clone(), format!("body '{}': {e}", body.name)))?;
+            }
+        }
+        Ok(())
     }
 
     /// Validates a scene built in code: every range rule and every reference.

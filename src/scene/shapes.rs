@@ -1,10 +1,12 @@
 //! Body outlines and the filling of an outline with material points.
 
+use super::point_file::ListedPoint;
 use crate::math::{DVec2, Real, check_convex_polygon};
 use serde::{Deserialize, Serialize};
 
 /// The outline of a body. Points are placed at the sub-cell centres of the
-/// grid cells (points_per_cell × points_per_cell per cell) that fall inside.
+/// grid cells (points_per_cell × points_per_cell per cell) that fall inside,
+/// except for `Points`, which lists them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Shape {
     /// An axis-aligned rectangle.
@@ -35,12 +37,33 @@ pub enum Shape {
         /// Outer radius (m), > inner radius.
         outer_radius: Real,
     },
+    /// The points listed in a CSV file (see [`super::point_file`]), e.g.
+    /// `Points(file: "soil.csv")`: a header naming the columns `x`, `y` and
+    /// optionally `volume`, then one point per line. A point without a
+    /// volume gets the lattice's, (h / n)²; each point's uGIMP domain is the
+    /// square of its volume.
+    Points {
+        /// The file, relative to the scene file's folder.
+        file: String,
+        /// The points, read from `file` when the scene is loaded
+        /// ([`super::Scene::read_point_files`]); a scene built in code may
+        /// fill them directly.
+        #[serde(skip)]
+        points: Vec<ListedPoint>,
+    },
 }
 
 impl Shape {
     /// Checks the geometry: finite coordinates, ordered corners, positive
     /// radii, a convex polygon.
     pub fn check(&self) -> Result<(), String> {
+        if let Self::Points { file, points } = self
+            && points.is_empty()
+        {
+            return Err(format!(
+                "the point list '{file}' has not been read (Scene::read_point_files) or is empty"
+            ));
+        }
         let (lo, hi) = self.bounds();
         if !(lo.is_finite() && hi.is_finite()) {
             return Err(format!(
@@ -75,6 +98,17 @@ impl Shape {
                     ));
                 }
             }
+            Self::Points { file, points } => {
+                if let Some(p) = points
+                    .iter()
+                    .find(|p| p.volume.is_some_and(|v| !(v > 0.0 && v.is_finite())))
+                {
+                    return Err(format!(
+                        "point list '{file}': the point at {} has volume {:?}; volumes must be > 0",
+                        p.position, p.volume
+                    ));
+                }
+            }
         }
         Ok(())
     }
@@ -96,6 +130,13 @@ impl Shape {
                 outer_radius,
                 ..
             } => (*center - *outer_radius, *center + *outer_radius),
+            Self::Points { points, .. } => points.iter().fold(
+                (
+                    DVec2::splat(Real::INFINITY),
+                    DVec2::splat(Real::NEG_INFINITY),
+                ),
+                |(lo, hi), p| (lo.min(p.position), hi.max(p.position)),
+            ),
         }
     }
 
@@ -124,12 +165,36 @@ impl Shape {
                 let r2 = p.distance_squared(*center);
                 r2 >= inner_radius * inner_radius && r2 <= outer_radius * outer_radius
             }
+            Self::Points { points, .. } => points.iter().any(|q| q.position == p),
+        }
+    }
+
+    /// The points filling the shape with their volumes, `None` for the
+    /// lattice's (h / n)²: [`Self::fill`]'s positions, or a point list's
+    /// points.
+    pub fn points(
+        &self,
+        origin: DVec2,
+        h: Real,
+        points_per_cell: u32,
+    ) -> Vec<(DVec2, Option<Real>)> {
+        match self {
+            Self::Points { points, .. } => points.iter().map(|p| (p.position, p.volume)).collect(),
+            _ => self
+                .fill(origin, h, points_per_cell)
+                .into_iter()
+                .map(|p| (p, None))
+                .collect(),
         }
     }
 
     /// Point positions filling the shape: the centres of an n × n split of
-    /// every grid cell (grid origin `origin`, cell size `h`) that lie inside.
+    /// every grid cell (grid origin `origin`, cell size `h`) that lie inside;
+    /// a point list's positions.
     pub fn fill(&self, origin: DVec2, h: Real, points_per_cell: u32) -> Vec<DVec2> {
+        if let Self::Points { points, .. } = self {
+            return points.iter().map(|p| p.position).collect();
+        }
         let (lo, hi) = self.bounds();
         let n = points_per_cell as Real;
         let first = ((lo - origin) / h).floor();

@@ -203,8 +203,8 @@ fn fill_body(
 ) -> Result<MaterialPoints, String> {
     let h = scene.grid.cell_size;
     let n = spec.points_per_cell as Real;
-    let volume = (h / n) * (h / n);
-    let half_size = DVec2::splat(h / (2.0 * n));
+    let lattice_volume = (h / n) * (h / n);
+    let lattice_half_size = DVec2::splat(h / (2.0 * n));
     let velocity_at: Box<dyn Fn(DVec2) -> Result<DVec2, String>> = match &spec.velocity {
         InitialVelocity::Constant(v) => {
             let v = *v;
@@ -217,7 +217,14 @@ fn fill_body(
     };
     let top = spec.shape.bounds().1.y;
     let mut points = MaterialPoints::default();
-    for position in spec.shape.fill(scene.grid.origin, h, spec.points_per_cell) {
+    for (position, listed_volume) in spec
+        .shape
+        .points(scene.grid.origin, h, spec.points_per_cell)
+    {
+        // A listed volume's uGIMP domain is the square of that area.
+        let (volume, half_size) = listed_volume.map_or((lattice_volume, lattice_half_size), |v| {
+            (v, DVec2::splat(0.5 * v.sqrt()))
+        });
         let velocity = velocity_at(position)?;
         let stress = match spec.initial_stress {
             Some(InitialStress::Geostatic { k0, surface }) => {

@@ -1,0 +1,122 @@
+//! Bodies from a point list file (`Shape::Points`, DESIGN.md section 5): the
+//! listed points are the body's points, with their volumes; a bad file is
+//! refused with the body, the file, its line and what was expected.
+
+mod common;
+
+use mpdem::prelude::*;
+use mpdem::scene::Shape;
+use std::path::{Path, PathBuf};
+
+/// The wave scene shortened to 0.05 s (500 steps), its bar read from
+/// `points.csv` holding `csv`, in a fresh folder named after `tag`; returns
+/// the scene file.
+fn listed_wave_scene(tag: &str, csv: &str) -> PathBuf {
+    let (folder, scene) = common::edited_wave_scene(
+        tag,
+        "shape: Rectangle(min: (0.0, 0.0), max: (1.0, 0.01)),",
+        "shape: Points(file: \"points.csv\"),",
+    );
+    let text = std::fs::read_to_string(&scene).expect("scene");
+    std::fs::write(&scene, text.replacen("end: 1.0", "end: 0.05", 1)).expect("scene");
+    std::fs::write(folder.join("points.csv"), csv).expect("point list");
+    scene
+}
+
+/// The lattice the wave scene's rectangle gives, as a point list
+/// (shortest round-trip decimals, so the positions are exact).
+fn lattice_of_the_wave_bar(with_volume: bool) -> String {
+    let scene = common::load_scene("wave_1d.ron");
+    let grid = &scene.grid;
+    let body = &scene.bodies[0];
+    let spacing = grid.cell_size / Real::from(body.points_per_cell);
+    let mut csv = String::from(if with_volume { "x,y,volume\n" } else { "x,y\n" });
+    for p in body
+        .shape
+        .fill(grid.origin, grid.cell_size, body.points_per_cell)
+    {
+        if with_volume {
+            csv += &format!("{:?},{:?},{:?}\n", p.x, p.y, 2.0 * spacing * spacing);
+        } else {
+            csv += &format!("{:?},{:?}\n", p.x, p.y);
+        }
+    }
+    csv
+}
+
+fn run(path: &Path) -> Simulation {
+    let mut sim = Simulation::from_scene_file(path).unwrap_or_else(|e| panic!("{e}"));
+    sim.run().unwrap_or_else(|e| panic!("{e}"));
+    sim
+}
+
+#[test]
+fn the_lattice_as_a_point_list_runs_bit_identical_to_the_shape() {
+    let listed = listed_wave_scene("listed-lattice", &lattice_of_the_wave_bar(false));
+    let mut original = common::load_scene("wave_1d.ron");
+    original.time.end = 0.05;
+    let mut shape = common::run_scene(&original);
+    let mut from_list = run(&listed);
+    assert_eq!(
+        shape.points_of("bar").unwrap().len(),
+        from_list.points_of("bar").unwrap().len()
+    );
+    assert_eq!(shape.state_hash(), from_list.state_hash());
+}
+
+#[test]
+fn listed_volumes_set_each_points_mass_and_domain() {
+    let listed = listed_wave_scene("listed-volumes", &lattice_of_the_wave_bar(true));
+    let scene = Scene::load(&listed).unwrap_or_else(|e| panic!("{e}"));
+    let Shape::Points { points, .. } = &scene.bodies[0].shape else {
+        panic!("not a point list")
+    };
+    let volume = points[0].volume.expect("listed volume");
+    let mut sim = Simulation::from_scene(&scene).unwrap_or_else(|e| panic!("{e}"));
+    let bar = sim.points_of("bar").unwrap();
+    let density = scene.materials[0].density;
+    assert!(bar.volume.iter().all(|&v| v == volume));
+    assert!(bar.mass.iter().all(|&m| m == density * volume));
+    // The uGIMP domain is the square of the listed area.
+    let half = 0.5 * volume.sqrt();
+    assert!(bar.half_size.iter().all(|&h| h == DVec2::splat(half)));
+}
+
+#[test]
+fn a_bad_point_list_is_refused_with_the_file_and_line() {
+    let scene = listed_wave_scene("listed-bad", "x,y\n0.1,0.005\n0.2,oops\n");
+    let message = Scene::load(&scene)
+        .expect_err("bad list accepted")
+        .to_string();
+    let shape_line = std::fs::read_to_string(&scene)
+        .unwrap()
+        .lines()
+        .position(|l| l.contains("Points(file"))
+        .unwrap()
+        + 1;
+    assert!(
+        message.contains(&format!("{}:{shape_line}:", scene.display())),
+        "not at the body's shape: {message}"
+    );
+    assert!(
+        message.contains("body 'bar'")
+            && message.contains("points.csv:3: expected a finite number in column y, got 'oops'"),
+        "{message}"
+    );
+
+    let missing = listed_wave_scene("listed-missing", "x,y\n0.1,0.005\n");
+    std::fs::remove_file(missing.with_file_name("points.csv")).unwrap();
+    let message = Scene::load(&missing)
+        .expect_err("missing list accepted")
+        .to_string();
+    assert!(
+        message.contains("points.csv: cannot read the point list"),
+        "{message}"
+    );
+
+    let outside = listed_wave_scene("listed-outside", "x,y\n0.1,0.005\n1.5,0.005\n");
+    let message = Scene::load(&outside)
+        .expect_err("outside accepted")
+        .to_string();
+    assert!(message.contains("is not inside the grid"), "{message}");
+}
