@@ -93,6 +93,26 @@ fn non_positive_time_step_is_refused() {
 }
 
 #[test]
+fn the_end_may_be_given_as_a_number_of_steps() {
+    let text = std::fs::read_to_string(common::scene_path("wave_1d.ron")).unwrap();
+    let by_steps = text.replacen("end: 1.0", "steps: 10000", 1);
+    let scene = Scene::parse(&by_steps, Path::new("steps.ron")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.time.end, 10000.0 * 1e-4);
+    let sim = Simulation::from_scene(&scene).unwrap();
+    assert_eq!(sim.clock().total_steps(), 10000);
+
+    let both = parse_edited("end: 1.0", "end: 1.0, steps: 10");
+    let line = line_of("end: 1.0", "end: 1.0, steps: 10", "steps: 10");
+    assert_error(both, line, "time takes end (s) or steps, not both");
+    let neither = parse_edited("dt: 1e-4, end: 1.0", "dt: 1e-4");
+    let line = line_of("dt: 1e-4, end: 1.0", "dt: 1e-4", "dt: 1e-4");
+    assert_error(neither, line, "time needs end (s) or steps");
+    let zero = parse_edited("end: 1.0", "steps: 0");
+    let line = line_of("end: 1.0", "steps: 0", "steps: 0");
+    assert_error(zero, line, "expected a number of steps ≥ 1, got 0");
+}
+
+#[test]
 fn unknown_fields_are_refused() {
     let e = parse_edited("points_per_cell: 2", "points_per_cel: 2");
     assert_error(

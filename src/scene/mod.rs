@@ -106,16 +106,44 @@ impl GridSpec {
     }
 }
 
-/// Time stepping.
+/// Time stepping. A scene gives `(dt, end)` or `(dt, steps)`; a number of
+/// steps becomes the end time steps × Δt.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(try_from = "TimeInput")]
 pub struct TimeSpec {
     /// Fixed time step Δt (s), > 0. A warning gives the CFL limit when Δt exceeds it.
-    #[serde(deserialize_with = "rules::de_positive")]
     pub dt: Real,
     /// End time (s), > 0.
-    #[serde(deserialize_with = "rules::de_positive")]
     pub end: Real,
+}
+
+/// [`TimeSpec`] as written in a scene: the end as a time or as a number of
+/// steps.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TimeInput {
+    #[serde(deserialize_with = "rules::de_positive")]
+    dt: Real,
+    #[serde(default, deserialize_with = "rules::de_some_positive")]
+    end: Option<Real>,
+    #[serde(default, deserialize_with = "rules::de_some_count")]
+    steps: Option<u64>,
+}
+
+impl TryFrom<TimeInput> for TimeSpec {
+    type Error = String;
+
+    fn try_from(input: TimeInput) -> Result<Self, String> {
+        let end = match (input.end, input.steps) {
+            (Some(end), None) => end,
+            (None, Some(steps)) => steps as Real * input.dt,
+            (Some(_), Some(_)) => {
+                return Err("time takes end (s) or steps, not both".into());
+            }
+            (None, None) => return Err("time needs end (s) or steps".into()),
+        };
+        Ok(Self { dt: input.dt, end })
+    }
 }
 
 /// A named material.

@@ -86,6 +86,21 @@ pub fn de_positive<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
     checked(d, positive)
 }
 
+/// `deserialize_with` form of [`positive`] for an optional field written
+/// without `Some` (absent: `None`, with `#[serde(default)]`).
+pub fn de_some_positive<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Real>, D::Error> {
+    checked(d, positive).map(Some)
+}
+
+/// A count ≥ 1 for an optional field written without `Some` (absent:
+/// `None`, with `#[serde(default)]`).
+pub fn de_some_count<'de, D: Deserializer<'de>>(d: D) -> Result<Option<u64>, D::Error> {
+    match u64::deserialize(d)? {
+        0 => Err(D::Error::custom("expected a number of steps ≥ 1, got 0")),
+        n => Ok(Some(n)),
+    }
+}
+
 /// `deserialize_with` form of [`non_negative`].
 pub fn de_non_negative<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
     checked(d, non_negative)
