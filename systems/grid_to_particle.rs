@@ -5,7 +5,7 @@ use crate::components::{GridLayer, MaterialPoints, StepTravel, TransferScratch, 
 use crate::math::{DVec2, Real, local_damping};
 use crate::resources::{Clock, Grid, PositionUpdate, Settings};
 use crate::shape_functions::Stencil;
-use crate::transfer::{MIN_NODES_PER_TASK, MIN_POINTS_PER_TASK};
+use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
@@ -109,7 +109,9 @@ pub fn grid_to_particle(
     }
 }
 
-/// Fills `xpic.star` with the XPIC(m) nodal velocity v* of eq. 12.
+/// Fills `xpic.star` with the XPIC(m) nodal velocity v* of eq. 12 on the
+/// layer's active nodes. Nodes outside them keep earlier values: no stencil
+/// reaches them.
 fn xpic_velocities(
     order: u32,
     mass: &[Real],
@@ -125,14 +127,22 @@ fn xpic_velocities(
         current,
         star,
     } = xpic;
-    let node_count = layer.nodes.len();
+    let (active, nodes) = (layer.active, &layer.nodes);
     let m = Real::from(order);
-    star.clear();
-    star.extend(layer.nodes.iter().map(|n| m * n.velocity));
-    previous.clear();
-    previous.extend(layer.nodes.iter().map(|n| n.velocity));
+    for field in [&mut *star, &mut *previous, &mut *current] {
+        field.resize(nodes.len(), DVec2::ZERO);
+    }
+    active
+        .rows_mut(star, row_len)
+        .zip(active.rows_mut(previous, row_len))
+        .for_each(|((j, star), (_, previous))| {
+            let row = active.row(nodes, row_len, j);
+            for ((s, u), node) in star.iter_mut().zip(previous.iter_mut()).zip(row) {
+                *s = m * node.velocity;
+                *u = node.velocity;
+            }
+        });
     point_velocity.resize(stencils.len(), DVec2::ZERO);
-    current.resize(node_count, DVec2::ZERO);
     let mut coefficient = m;
     for k in 2..=order {
         // C(m, k) = C(m, k − 1) (m − k + 1) / k, alternating in sign.
@@ -147,25 +157,30 @@ fn xpic_velocities(
             });
         let carried = &*point_velocity;
         momentum.scatter(stencils, |p| mass[p] * carried[p], |mv, w, _| w * *mv);
-        current.iter_mut().for_each(|u| *u = DVec2::ZERO);
+        active
+            .rows_mut(current, row_len)
+            .for_each(|(_, row)| row.fill(DVec2::ZERO));
         momentum.add_into(current, row_len, |u, mv| *u += mv);
         let cutoff = layer.mass_cutoff;
-        current
-            .par_iter_mut()
-            .zip(layer.nodes.par_iter())
-            .with_min_len(MIN_NODES_PER_TASK)
-            .for_each(|(u, node)| {
+        active.rows_mut(current, row_len).for_each(|(j, current)| {
+            let row = active.row(nodes, row_len, j);
+            for (u, node) in current.iter_mut().zip(row) {
                 *u = if node.mass > cutoff {
                     *u / node.mass
                 } else {
                     DVec2::ZERO
                 };
-            });
+            }
+        });
         layer.constrain(current);
-        star.par_iter_mut()
-            .zip(current.par_iter())
-            .with_min_len(MIN_NODES_PER_TASK)
-            .for_each(|(s, u)| *s += coefficient * *u);
+        active
+            .rows_mut(star, row_len)
+            .zip(active.rows_mut(current, row_len))
+            .for_each(|((_, star), (_, current))| {
+                for (s, u) in star.iter_mut().zip(current.iter()) {
+                    *s += coefficient * *u;
+                }
+            });
         std::mem::swap(previous, current);
     }
 }

@@ -129,7 +129,7 @@ impl NodeRect {
 /// after every scatter ([`crate::resources::SharedLayers`]).
 ///
 /// Only the nodes of `active`, around the body's points, are reset and
-/// solved each step (XPIC's smoothing still runs over every node). Every
+/// solved each step (and smoothed by XPIC). Every
 /// node outside `active` holds zero: a system that writes nodes must stay
 /// inside it, and points must not move between `GridReset` and
 /// `ParticleToGrid`, as `active` is set from their positions at the reset.
