@@ -5,7 +5,7 @@
 mod common;
 
 use mpdem::prelude::*;
-use mpdem::scene::Shape;
+use mpdem::scene::{InitialStress, ListedPoint, Shape};
 use std::path::{Path, PathBuf};
 
 /// The wave scene shortened to 0.05 s (500 steps), its bar read from
@@ -36,7 +36,7 @@ fn lattice_of_the_wave_bar(with_volume: bool) -> String {
         .fill(grid.origin, grid.cell_size, body.points_per_cell)
     {
         if with_volume {
-            csv += &format!("{:?},{:?},{:?}\n", p.x, p.y, 2.0 * spacing * spacing);
+            csv += &format!("{:?},{:?},{:?}\n", p.x, p.y, 0.5 * spacing * spacing);
         } else {
             csv += &format!("{:?},{:?}\n", p.x, p.y);
         }
@@ -77,9 +77,96 @@ fn listed_volumes_set_each_points_mass_and_domain() {
     let density = scene.materials[0].density;
     assert!(bar.volume.iter().all(|&v| v == volume));
     assert!(bar.mass.iter().all(|&m| m == density * volume));
-    // The uGIMP domain is the square of the listed area.
+    // The uGIMP domain is a square of the listed area, and the default DEM
+    // disk reaches its sides.
     let half = 0.5 * volume.sqrt();
     assert!(bar.half_size.iter().all(|&h| h == DVec2::splat(half)));
+    assert!(bar.contact_radius.iter().all(|&r| r == half));
+}
+
+/// The geostatic column's soil as a point list filled in code: its lattice
+/// with the lattice's volume given explicitly.
+fn listed_geostatic_column() -> Scene {
+    let mut scene = common::load_scene("geostatic_column.ron");
+    let grid = &scene.grid;
+    let body = &scene.bodies[0];
+    let spacing = grid.cell_size / Real::from(body.points_per_cell);
+    let points = body
+        .shape
+        .fill(grid.origin, grid.cell_size, body.points_per_cell)
+        .into_iter()
+        .map(|position| ListedPoint {
+            position,
+            volume: Some(spacing * spacing),
+        })
+        .collect();
+    scene.bodies[0].shape = Shape::Points {
+        file: "in code".into(),
+        points,
+    };
+    scene
+}
+
+#[test]
+fn a_listed_bodys_geostatic_stress_starts_at_its_highest_domain_edge() {
+    let mut scene = listed_geostatic_column();
+    scene.stages.clear();
+    scene.bodies[0].initial_stress = Some(InitialStress::Geostatic {
+        k0: 0.5,
+        surface: None,
+    });
+    let mut listed = Simulation::from_scene(&scene).unwrap_or_else(|e| panic!("{e}"));
+    let mut original = common::load_scene("geostatic_column.ron");
+    original.stages.clear();
+    original.bodies[0].initial_stress = scene.bodies[0].initial_stress.clone();
+    let mut lattice = Simulation::from_scene(&original).unwrap_or_else(|e| panic!("{e}"));
+    // The top points' domains end at the rectangle's top, 4 m: the same
+    // stresses as the rectangle's, up to the round-off of y + half.
+    let listed = listed.points_of("soil").unwrap().stress.clone();
+    let lattice = &lattice.points_of("soil").unwrap().stress;
+    for (a, b) in listed.iter().zip(lattice) {
+        assert!(
+            (a.yy - b.yy).abs() <= 1e-9 * b.yy.abs().max(1.0),
+            "{a:?} vs {b:?}"
+        );
+    }
+    assert!(lattice.iter().all(|s| s.yy < 0.0));
+}
+
+#[test]
+fn a_listed_body_refuses_tractions_and_oversized_or_outlying_domains() {
+    // Surcharges find a side's points per lattice column.
+    let message = common::refusal(&listed_geostatic_column());
+    assert!(
+        message
+            .contains("body 'soil' is a point list: tractions need a body filled on the lattice"),
+        "{message}"
+    );
+    let mut scene = listed_geostatic_column();
+    scene.stages.clear();
+    let Shape::Points { points, .. } = &mut scene.bodies[0].shape else {
+        unreachable!()
+    };
+    // uGIMP's stencil holds domains up to a cell (0.2 m here).
+    points[0].volume = Some(0.2 * 0.2 * 1.01);
+    let message = common::refusal(&scene);
+    assert!(message.contains("more than a cell"), "{message}");
+    // The point (0.05, 0.05) with a domain 0.12 m wide reaches past the
+    // grid's left edge at 0.
+    let Shape::Points { points, .. } = &mut scene.bodies[0].shape else {
+        unreachable!()
+    };
+    points[0].volume = Some(0.12 * 0.12);
+    let message = common::refusal(&scene);
+    assert!(message.contains("is not inside the grid"), "{message}");
+    // A position that is not finite, which only code can give.
+    let Shape::Points { points, .. } = &mut scene.bodies[0].shape else {
+        unreachable!()
+    };
+    points[0].volume = None;
+    points[1].position.x = Real::NAN;
+    let message = common::refusal(&scene);
+    assert!(message.contains("positions must be finite"), "{message}");
 }
 
 #[test]

@@ -107,6 +107,14 @@ fn the_end_may_be_given_as_a_number_of_steps() {
     let neither = parse_edited("dt: 1e-4, end: 1.0", "dt: 1e-4");
     let line = line_of("dt: 1e-4, end: 1.0", "dt: 1e-4", "dt: 1e-4");
     assert_error(neither, line, "time needs end (s) or steps");
+    // Written over several lines, the error still points at the entry.
+    let spread = "time: (\n        dt: 1e-4,\n        end: 1.0,\n        steps: 10,\n    ),";
+    let both = parse_edited("time: (dt: 1e-4, end: 1.0),", spread);
+    assert_error(
+        both,
+        line_of("time: (dt: 1e-4, end: 1.0),", spread, "time: ("),
+        "not both",
+    );
     let zero = parse_edited("end: 1.0", "steps: 0");
     let line = line_of("end: 1.0", "steps: 0", "steps: 0");
     assert_error(zero, line, "expected a number of steps ≥ 1, got 0");

@@ -117,16 +117,21 @@ pub struct TimeSpec {
     pub end: Real,
 }
 
+/// The error for a time entry with both an end and a number of steps.
+const TIME_END_TWICE: &str = "time takes end (s) or steps, not both";
+/// The error for a time entry with neither.
+const TIME_END_MISSING: &str = "time needs end (s) or steps";
+
 /// [`TimeSpec`] as written in a scene: the end as a time or as a number of
 /// steps.
 #[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, rename = "TimeSpec")]
 struct TimeInput {
     #[serde(deserialize_with = "rules::de_positive")]
     dt: Real,
     #[serde(default, deserialize_with = "rules::de_some_positive")]
     end: Option<Real>,
-    #[serde(default, deserialize_with = "rules::de_some_count")]
+    #[serde(default, deserialize_with = "rules::de_some_step_count")]
     steps: Option<u64>,
 }
 
@@ -137,10 +142,8 @@ impl TryFrom<TimeInput> for TimeSpec {
         let end = match (input.end, input.steps) {
             (Some(end), None) => end,
             (None, Some(steps)) => steps as Real * input.dt,
-            (Some(_), Some(_)) => {
-                return Err("time takes end (s) or steps, not both".into());
-            }
-            (None, None) => return Err("time needs end (s) or steps".into()),
+            (Some(_), Some(_)) => return Err(TIME_END_TWICE.into()),
+            (None, None) => return Err(TIME_END_MISSING.into()),
         };
         Ok(Self { dt: input.dt, end })
     }
@@ -422,12 +425,19 @@ impl Scene {
         Self::parse(&source, path)
     }
 
-    /// Parses and validates scene text; `path` is used in messages and for
-    /// the default name.
+    /// Parses and validates scene text; `path` is used in messages, for
+    /// the default name, and its folder for the point lists' files.
     pub fn parse(source: &str, path: &Path) -> Result<Self, SceneError> {
-        let mut scene: Scene = ron::from_str(source).map_err(|e| SceneError::Parse {
-            location: SourceLocation::at(path, e.span.start.line, e.span.start.col),
-            message: e.code.to_string(),
+        let mut scene: Scene = ron::from_str(source).map_err(|e| {
+            let message = e.code.to_string();
+            // The parser stands past the time entry when it finds its end
+            // missing or given twice: point at the entry instead.
+            let location = if [TIME_END_TWICE, TIME_END_MISSING].contains(&message.as_str()) {
+                SourceLocation::find(source, path, &["time"])
+            } else {
+                SourceLocation::at(path, e.span.start.line, e.span.start.col)
+            };
+            SceneError::Parse { location, message }
         })?;
         if scene.name.is_none() {
             scene.name = path.file_stem().map(|s| s.to_string_lossy().into_owned());
@@ -445,28 +455,6 @@ impl Scene {
         }
         scene.validate_in(Some((source, path)))?;
         Ok(scene)
-    }
-
-    /// Reads the file of every `Points` body, relative to `folder` (the
-    /// scene file's folder; [`Self::load`] and [`Self::parse`] do this). The
-    /// error names the body, the file, its line and what was expected.
-    pub fn read_point_files(&mut self, folder: &Path) -> Result<(), SceneError> {
-        self.read_point_files_in(folder)
-            .map_err(|(_, message)| SceneError::Invalid {
-                location: SourceLocation::default(),
-                message,
-            })
-    }
-
-    /// [`Self::read_point_files`], the error with the body's name.
-    fn read_point_files_in(&mut self, folder: &Path) -> Result<(), (String, String)> {
-        for body in &mut self.bodies {
-            if let Shape::Points { file, points } = &mut body.shape {
-                *points = point_file::read_point_file(&folder.join(&*file))
-                    .map_err(|e| (body.name.clone(), format!("body '{}': {e}", body.name)))?;
-            }
-        }
-        Ok(())
     }
 
     /// Validates a scene built in code: every range rule and every reference.

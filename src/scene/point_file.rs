@@ -4,20 +4,61 @@
 //!
 //! The file has a header naming its columns, `x` and `y` (m) and optionally
 //! `volume` (m² per metre of thickness), in any order, then one point per
-//! line. Lines starting with `#` are comments; spaces around values are
-//! ignored.
+//! line, values separated by commas. Lines starting with `#` and blank lines
+//! are skipped; spaces around values, a byte-order mark and CRLF line ends
+//! are accepted. Parsed here rather than with the `csv` crate: numbers need
+//! no quoting, and errors must give the line as an editor shows it, which
+//! the crate's record positions do not after comments or CRLF ends.
 
+use super::{Scene, SceneError, Shape, SourceLocation};
 use crate::math::{DVec2, Real};
 use std::path::Path;
 
-/// One point of a point list: its position and, when the file gives one,
-/// its volume (otherwise the body's lattice volume, (h / n)²).
+/// One point of a point list: its position and, when the file has a
+/// `volume` column, its volume (otherwise the body's lattice volume,
+/// (h / n)²).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ListedPoint {
     /// Position (m).
     pub position: DVec2,
     /// Volume (m² per metre of thickness), > 0 when given.
     pub volume: Option<Real>,
+}
+
+impl ListedPoint {
+    /// The point's volume and uGIMP domain half-size: a square of the listed
+    /// area (half-size √V / 2), or the lattice's for the point spacing
+    /// `spacing` (h / n).
+    pub fn domain(&self, spacing: Real) -> (Real, DVec2) {
+        match self.volume {
+            Some(v) => (v, DVec2::splat(0.5 * v.sqrt())),
+            None => (spacing * spacing, DVec2::splat(0.5 * spacing)),
+        }
+    }
+}
+
+impl Scene {
+    /// Reads the file of every `Points` body, relative to `folder` (the
+    /// scene file's folder; [`Self::load`] and [`Self::parse`] do this). The
+    /// error names the body, the file, its line and what was expected.
+    pub fn read_point_files(&mut self, folder: &Path) -> Result<(), SceneError> {
+        self.read_point_files_in(folder)
+            .map_err(|(_, message)| SceneError::Invalid {
+                location: SourceLocation::default(),
+                message,
+            })
+    }
+
+    /// [`Self::read_point_files`], the error with the body's name.
+    pub(super) fn read_point_files_in(&mut self, folder: &Path) -> Result<(), (String, String)> {
+        for body in &mut self.bodies {
+            if let Shape::Points { file, points } = &mut body.shape {
+                *points = read_point_file(&folder.join(&*file))
+                    .map_err(|e| (body.name.clone(), format!("body '{}': {e}", body.name)))?;
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Reads a point list. The error names the file, the line and what was
@@ -28,46 +69,64 @@ pub fn read_point_file(path: &Path) -> Result<Vec<ListedPoint>, String> {
     parse_point_list(&text).map_err(|e| format!("{}:{e}", path.display()))
 }
 
+/// The columns a point list may have.
+const COLUMNS: [&str; 3] = ["x", "y", "volume"];
+
 /// Parses the text of a point list; errors start with the line number.
 fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, String> {
-    let mut reader = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .from_reader(text.as_bytes());
-    let header = reader
-        .headers()
-        .map_err(|e| format!("{}: {e}", line_of(e.position())))?
-        .clone();
-    let column = |name: &str| header.iter().position(|h| h == name);
-    if let Some(unknown) = header.iter().find(|h| !["x", "y", "volume"].contains(h)) {
-        return Err(format!(
-            "1: unknown column '{unknown}' in the header; expected x, y and optionally volume"
-        ));
+    let mut lines = text
+        .trim_start_matches('\u{feff}')
+        .lines()
+        .enumerate()
+        .map(|(k, line)| (k + 1, line.trim()))
+        .filter(|(_, line)| !line.is_empty() && !line.starts_with('#'));
+    let Some((header_line, header)) = lines.next() else {
+        return Err("1: the point list is empty; expected a header x,y or x,y,volume".into());
+    };
+    let names: Vec<&str> = header.split(',').map(str::trim).collect();
+    let column = |name: &str| names.iter().position(|&h| h == name);
+    for (k, name) in names.iter().enumerate() {
+        if !COLUMNS.contains(name) {
+            return Err(format!(
+                "{header_line}: unknown column '{name}' in the header; expected x, y and optionally volume"
+            ));
+        }
+        if names[..k].contains(name) {
+            return Err(format!(
+                "{header_line}: the header names column '{name}' twice"
+            ));
+        }
     }
     let (Some(x), Some(y)) = (column("x"), column("y")) else {
         return Err(format!(
-            "1: the header must name the columns x and y (and optionally volume), got '{}'",
-            header.iter().collect::<Vec<_>>().join(",")
+            "{header_line}: the header must name the columns x and y (and optionally volume), got '{header}'"
         ));
     };
     let volume = column("volume");
     let mut points = Vec::new();
-    for record in reader.records() {
-        let record = record.map_err(|e| format!("{}: {e}", line_of(e.position())))?;
-        let line = record.position().map_or(0, csv::Position::line);
-        let number = |k: usize, name: &str| -> Result<Real, String> {
-            let field = record.get(k).unwrap_or_default();
-            match field.parse::<Real>() {
+    for (line, text) in lines {
+        let values: Vec<&str> = text.split(',').map(str::trim).collect();
+        if values.len() != names.len() {
+            return Err(format!(
+                "{line}: expected {} values ({}) as in the header, got {}",
+                names.len(),
+                names.join(", "),
+                values.len()
+            ));
+        }
+        let number = |k: usize| -> Result<Real, String> {
+            match values[k].parse::<Real>() {
                 Ok(v) if v.is_finite() => Ok(v),
                 _ => Err(format!(
-                    "{line}: expected a finite number in column {name}, got '{field}'"
+                    "{line}: expected a finite number in column {}, got '{}'",
+                    names[k], values[k]
                 )),
             }
         };
-        let position = DVec2::new(number(x, "x")?, number(y, "y")?);
+        let position = DVec2::new(number(x)?, number(y)?);
         let volume = match volume {
             Some(k) => {
-                let v = number(k, "volume")?;
+                let v = number(k)?;
                 if v <= 0.0 {
                     return Err(format!("{line}: volume must be > 0, got {v}"));
                 }
@@ -78,14 +137,11 @@ fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, String> {
         points.push(ListedPoint { position, volume });
     }
     if points.is_empty() {
-        return Err("1: the point list has a header but no point".into());
+        return Err(format!(
+            "{header_line}: the point list has a header but no point"
+        ));
     }
     Ok(points)
-}
-
-/// The line of a CSV error, or "?" when the reader gives none.
-fn line_of(position: Option<&csv::Position>) -> String {
-    position.map_or_else(|| "?".into(), |p| p.line().to_string())
 }
 
 #[cfg(test)]
@@ -94,9 +150,10 @@ mod tests {
 
     #[test]
     fn columns_in_any_order_with_comments_and_spaces() {
-        let points =
-            parse_point_list("# from a mesher\nvolume, y, x\n0.5, 2.0, 1.0\n# done\n0.25,4,3\n")
-                .unwrap();
+        let points = parse_point_list(
+            "\u{feff}# from a mesher\nvolume, y, x\n0.5, 2.0, 1.0\n\n# done\n0.25,4,3\n",
+        )
+        .unwrap();
         assert_eq!(
             points,
             vec![
@@ -110,39 +167,30 @@ mod tests {
                 },
             ]
         );
-        let bare = parse_point_list("x,y\n1,2\n").unwrap();
+        let bare = parse_point_list("x,y\r\n1,2\r\n").unwrap();
         assert_eq!(bare[0].volume, None);
     }
 
     #[test]
-    fn errors_give_the_line_and_what_was_expected() {
-        let bad_number = parse_point_list("x,y\n1,2\n1,two\n").unwrap_err();
+    fn errors_give_the_line_as_an_editor_shows_it() {
+        let error = |text: &str| parse_point_list(text).unwrap_err();
         assert_eq!(
-            bad_number,
+            error("x,y\n1,2\n1,two\n"),
             "3: expected a finite number in column y, got 'two'"
         );
-        let missing = parse_point_list("x,y\n1,2\n3\n").unwrap_err();
-        assert!(missing.starts_with("3: "), "{missing}");
-        assert!(
-            parse_point_list("x,z\n1,2\n")
-                .unwrap_err()
-                .contains("unknown column 'z'")
+        // Comments, blank lines and CRLF ends count as lines.
+        assert!(error("# c\nx,y\n1,2\n\n# c\n1,two\n").starts_with("6: "));
+        assert!(error("x,y\r\n1,2\r\n1,two\r\n").starts_with("3: "));
+        assert_eq!(
+            error("x,y\n1,2\n3\n"),
+            "3: expected 2 values (x, y) as in the header, got 1"
         );
-        assert!(
-            parse_point_list("x,volume\n1,2\n")
-                .unwrap_err()
-                .contains("x and y")
-        );
-        assert!(parse_point_list("x,y\n").unwrap_err().contains("no point"));
-        assert!(
-            parse_point_list("x,y,volume\n1,2,0\n")
-                .unwrap_err()
-                .contains("2: volume must be > 0")
-        );
-        assert!(
-            parse_point_list("x,y\n1,inf\n")
-                .unwrap_err()
-                .contains("finite")
-        );
+        assert!(error("# c\nx,z\n1,2\n").starts_with("2: unknown column 'z'"));
+        assert!(error("x,x,y\n1,2,3\n").contains("names column 'x' twice"));
+        assert!(error("x,volume\n1,2\n").contains("x and y"));
+        assert!(error("x,y\n").contains("no point"));
+        assert!(error("").contains("empty"));
+        assert!(error("x,y,volume\n1,2,0\n").starts_with("2: volume must be > 0"));
+        assert!(error("x,y\n1,inf\n").contains("finite"));
     }
 }

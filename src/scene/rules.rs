@@ -92,9 +92,9 @@ pub fn de_some_positive<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Real>,
     checked(d, positive).map(Some)
 }
 
-/// A count ≥ 1 for an optional field written without `Some` (absent:
-/// `None`, with `#[serde(default)]`).
-pub fn de_some_count<'de, D: Deserializer<'de>>(d: D) -> Result<Option<u64>, D::Error> {
+/// A number of steps ≥ 1 for an optional field written without `Some`
+/// (absent: `None`, with `#[serde(default)]`).
+pub fn de_some_step_count<'de, D: Deserializer<'de>>(d: D) -> Result<Option<u64>, D::Error> {
     match u64::deserialize(d)? {
         0 => Err(D::Error::custom("expected a number of steps ≥ 1, got 0")),
         n => Ok(Some(n)),

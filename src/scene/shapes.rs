@@ -39,15 +39,17 @@ pub enum Shape {
     },
     /// The points listed in a CSV file (see [`super::point_file`]), e.g.
     /// `Points(file: "soil.csv")`: a header naming the columns `x`, `y` and
-    /// optionally `volume`, then one point per line. A point without a
-    /// volume gets the lattice's, (h / n)²; each point's uGIMP domain is the
-    /// square of its volume.
+    /// optionally `volume`, then one point per line. Without a volume
+    /// column each point gets the lattice's volume, (h / n)²; each point's
+    /// uGIMP domain is a square of that area (half-size √V / 2), and its
+    /// default DEM disk reaches the square's sides.
     Points {
         /// The file, relative to the scene file's folder.
         file: String,
         /// The points, read from `file` when the scene is loaded
         /// ([`super::Scene::read_point_files`]); a scene built in code may
-        /// fill them directly.
+        /// fill them directly. Not serialized: a written scene names the
+        /// file only.
         #[serde(skip)]
         points: Vec<ListedPoint>,
     },
@@ -55,7 +57,8 @@ pub enum Shape {
 
 impl Shape {
     /// Checks the geometry: finite coordinates, ordered corners, positive
-    /// radii, a convex polygon.
+    /// radii, a convex polygon; a point list that has been read, with
+    /// finite positions and positive volumes.
     pub fn check(&self) -> Result<(), String> {
         if let Self::Points { file, points } = self
             && points.is_empty()
@@ -99,12 +102,11 @@ impl Shape {
                 }
             }
             Self::Points { file, points } => {
-                if let Some(p) = points
-                    .iter()
-                    .find(|p| p.volume.is_some_and(|v| !(v > 0.0 && v.is_finite())))
-                {
+                if let Some(p) = points.iter().find(|p| {
+                    !p.position.is_finite() || p.volume.is_some_and(|v| !(v > 0.0 && v.is_finite()))
+                }) {
                     return Err(format!(
-                        "point list '{file}': the point at {} has volume {:?}; volumes must be > 0",
+                        "point list '{file}': the point at {} has volume {:?}; positions must be finite and volumes > 0",
                         p.position, p.volume
                     ));
                 }
@@ -140,7 +142,8 @@ impl Shape {
         }
     }
 
-    /// Whether `p` is inside (boundary included).
+    /// Whether `p` is inside (boundary included); for a point list, whether
+    /// `p` is one of its points.
     pub fn contains(&self, p: DVec2) -> bool {
         match self {
             Self::Rectangle { min, max } => p.cmpge(*min).all() && p.cmple(*max).all(),
@@ -169,21 +172,18 @@ impl Shape {
         }
     }
 
-    /// The points filling the shape with their volumes, `None` for the
-    /// lattice's (h / n)²: [`Self::fill`]'s positions, or a point list's
-    /// points.
-    pub fn points(
-        &self,
-        origin: DVec2,
-        h: Real,
-        points_per_cell: u32,
-    ) -> Vec<(DVec2, Option<Real>)> {
+    /// The body's points: a point list's, or [`Self::fill`]'s lattice
+    /// without volumes (the lattice's (h / n)²).
+    pub fn points(&self, origin: DVec2, h: Real, points_per_cell: u32) -> Vec<ListedPoint> {
         match self {
-            Self::Points { points, .. } => points.iter().map(|p| (p.position, p.volume)).collect(),
+            Self::Points { points, .. } => points.clone(),
             _ => self
                 .fill(origin, h, points_per_cell)
                 .into_iter()
-                .map(|p| (p, None))
+                .map(|position| ListedPoint {
+                    position,
+                    volume: None,
+                })
                 .collect(),
         }
     }

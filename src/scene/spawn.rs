@@ -1,6 +1,8 @@
 //! Turning a validated scene into a bevy `World`.
 
-use super::{InitialStress, InitialVelocity, Scene, SceneError, SourceLocation, VelocityField};
+use super::{
+    InitialStress, InitialVelocity, Scene, SceneError, Shape, SourceLocation, VelocityField,
+};
 use crate::components::{
     BodyIndex, BodyName, GridLayer, Material, MaterialPoints, NewPoint, RegionConstraint,
     RegionConstraints, StepTravel, TransferScratch,
@@ -202,9 +204,7 @@ fn fill_body(
     density: Real,
 ) -> Result<MaterialPoints, String> {
     let h = scene.grid.cell_size;
-    let n = spec.points_per_cell as Real;
-    let lattice_volume = (h / n) * (h / n);
-    let lattice_half_size = DVec2::splat(h / (2.0 * n));
+    let spacing = h / spec.points_per_cell as Real;
     let velocity_at: Box<dyn Fn(DVec2) -> Result<DVec2, String>> = match &spec.velocity {
         InitialVelocity::Constant(v) => {
             let v = *v;
@@ -215,16 +215,21 @@ fn fill_body(
             Box::new(move |p| field.at(p))
         }
     };
-    let top = spec.shape.bounds().1.y;
-    let mut points = MaterialPoints::default();
-    for (position, listed_volume) in spec
+    let listed = spec
         .shape
-        .points(scene.grid.origin, h, spec.points_per_cell)
-    {
-        // A listed volume's uGIMP domain is the square of that area.
-        let (volume, half_size) = listed_volume.map_or((lattice_volume, lattice_half_size), |v| {
-            (v, DVec2::splat(0.5 * v.sqrt()))
-        });
+        .points(scene.grid.origin, h, spec.points_per_cell);
+    // The body's top: the outline's, or a point list's highest domain edge.
+    let top = match spec.shape {
+        Shape::Points { .. } => listed
+            .iter()
+            .map(|p| p.position.y + p.domain(spacing).1.y)
+            .fold(Real::NEG_INFINITY, Real::max),
+        _ => spec.shape.bounds().1.y,
+    };
+    let mut points = MaterialPoints::default();
+    for point in &listed {
+        let position = point.position;
+        let (volume, half_size) = point.domain(spacing);
         let velocity = velocity_at(position)?;
         let stress = match spec.initial_stress {
             Some(InitialStress::Geostatic { k0, surface }) => {
@@ -236,7 +241,9 @@ fn fill_body(
             None => SymTensor::ZERO,
         };
         points.push(NewPoint {
-            contact_radius: spec.contact_radius.unwrap_or(h / (2.0 * n)),
+            // Default: the disk reaches the sides of the point's domain
+            // (half the spacing on the lattice).
+            contact_radius: spec.contact_radius.unwrap_or(half_size.x),
             position,
             velocity,
             volume,

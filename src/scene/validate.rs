@@ -1,11 +1,12 @@
 //! Consistency checks of a whole scene: ranges, names and geometry.
 
 use super::{
-    InitialStress, InitialVelocity, MotionSpec, Scene, SceneError, SourceLocation, VelocityField,
-    rules,
+    InitialStress, InitialVelocity, MotionSpec, Scene, SceneError, Shape, SourceLocation,
+    VelocityField, rules,
 };
 use crate::components::RigidVelocity;
 use crate::contact::ForceApplication;
+use crate::math::{DVec2, Real};
 use crate::resources::MAX_CONTACT_BODIES;
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -156,7 +157,43 @@ impl Scene {
             b.shape
                 .check()
                 .map_err(|e| fail("shape", format!("body '{}': {e}", b.name)))?;
-            let (lo, hi) = b.shape.bounds();
+            let points = b
+                .shape
+                .points(grid.origin, grid.cell_size, b.points_per_cell);
+            let spacing = grid.cell_size / Real::from(b.points_per_cell);
+            // A listed point's whole domain must be inside (a lattice's
+            // points are inside their outline by construction), and no
+            // larger than a cell: uGIMP's three-node stencil needs l ≤ h / 2.
+            let (lo, hi) = match &b.shape {
+                Shape::Points { file, .. } => {
+                    if let Some(p) = points
+                        .iter()
+                        .find(|p| p.domain(spacing).0 > grid.cell_size * grid.cell_size)
+                    {
+                        return Err(fail(
+                            "shape",
+                            format!(
+                                "body '{}': the point at {} in '{file}' has volume {}, more than a cell ({}): its domain would reach beyond the nodes next to it",
+                                b.name,
+                                p.position,
+                                p.domain(spacing).0,
+                                grid.cell_size * grid.cell_size
+                            ),
+                        ));
+                    }
+                    points.iter().fold(
+                        (
+                            DVec2::splat(Real::INFINITY),
+                            DVec2::splat(Real::NEG_INFINITY),
+                        ),
+                        |(lo, hi), p| {
+                            let half = p.domain(spacing).1;
+                            (lo.min(p.position - half), hi.max(p.position + half))
+                        },
+                    )
+                }
+                _ => b.shape.bounds(),
+            };
             if lo.cmplt(grid_min + margin).any() || hi.cmpgt(grid_max - margin).any() {
                 return Err(fail(
                     "shape",
@@ -171,7 +208,6 @@ impl Scene {
                     ),
                 ));
             }
-            let points = b.shape.fill(grid.origin, grid.cell_size, b.points_per_cell);
             if points.is_empty() {
                 return Err(fail(
                     "shape",
@@ -186,7 +222,7 @@ impl Scene {
                     .map_err(|e| fail("velocity", format!("body '{}': {e}", b.name)))?;
                 for p in &points {
                     field
-                        .at(*p)
+                        .at(p.position)
                         .map_err(|e| fail("velocity", format!("body '{}': {e}", b.name)))?;
                 }
             }
@@ -524,11 +560,22 @@ impl Scene {
                 }
             }
             for traction in &stage.tractions {
-                if !body_names.contains(traction.body.as_str()) {
+                let Some(body) = self.bodies.iter().find(|b| b.name == traction.body) else {
                     return Err(fail(
                         "tractions",
                         format!(
                             "unknown body '{}'; expected one of {body_names:?}",
+                            traction.body
+                        ),
+                    ));
+                };
+                // A side's points are found per column or row of the
+                // lattice, which a point list need not have.
+                if matches!(body.shape, Shape::Points { .. }) {
+                    return Err(fail(
+                        "tractions",
+                        format!(
+                            "body '{}' is a point list: tractions need a body filled on the lattice",
                             traction.body
                         ),
                     ));
