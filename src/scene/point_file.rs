@@ -37,6 +37,21 @@ impl ListedPoint {
     }
 }
 
+/// Lower-left and upper-right corners of the box around the points'
+/// domains ([`ListedPoint::domain`], `spacing` h / n).
+pub fn domain_bounds(points: &[ListedPoint], spacing: Real) -> (DVec2, DVec2) {
+    points.iter().fold(
+        (
+            DVec2::splat(Real::INFINITY),
+            DVec2::splat(Real::NEG_INFINITY),
+        ),
+        |(lo, hi), p| {
+            let half = p.domain(spacing).1;
+            (lo.min(p.position - half), hi.max(p.position + half))
+        },
+    )
+}
+
 impl Scene {
     /// Reads the file of every `Points` body, relative to `folder` (the
     /// scene file's folder; [`Self::load`] and [`Self::parse`] do this). The

@@ -220,10 +220,7 @@ fn fill_body(
         .points(scene.grid.origin, h, spec.points_per_cell);
     // The body's top: the outline's, or a point list's highest domain edge.
     let top = match spec.shape {
-        Shape::Points { .. } => listed
-            .iter()
-            .map(|p| p.position.y + p.domain(spacing).1.y)
-            .fold(Real::NEG_INFINITY, Real::max),
+        Shape::Points { .. } => super::point_file::domain_bounds(&listed, spacing).1.y,
         _ => spec.shape.bounds().1.y,
     };
     let mut points = MaterialPoints::default();

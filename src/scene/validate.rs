@@ -1,12 +1,13 @@
 //! Consistency checks of a whole scene: ranges, names and geometry.
 
+use super::point_file::domain_bounds;
 use super::{
     InitialStress, InitialVelocity, MotionSpec, Scene, SceneError, Shape, SourceLocation,
     VelocityField, rules,
 };
 use crate::components::RigidVelocity;
 use crate::contact::ForceApplication;
-use crate::math::{DVec2, Real};
+use crate::math::Real;
 use crate::resources::MAX_CONTACT_BODIES;
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -166,31 +167,21 @@ impl Scene {
             // larger than a cell: uGIMP's three-node stencil needs l ≤ h / 2.
             let (lo, hi) = match &b.shape {
                 Shape::Points { file, .. } => {
-                    if let Some(p) = points
+                    let cell = grid.cell_size * grid.cell_size;
+                    if let Some((p, volume)) = points
                         .iter()
-                        .find(|p| p.domain(spacing).0 > grid.cell_size * grid.cell_size)
+                        .map(|p| (p, p.domain(spacing).0))
+                        .find(|&(_, volume)| volume > cell)
                     {
                         return Err(fail(
                             "shape",
                             format!(
-                                "body '{}': the point at {} in '{file}' has volume {}, more than a cell ({}): its domain would reach beyond the nodes next to it",
-                                b.name,
-                                p.position,
-                                p.domain(spacing).0,
-                                grid.cell_size * grid.cell_size
+                                "body '{}': the point at {} in '{file}' has volume {volume}, more than a cell ({cell}): its domain would reach beyond the nodes next to it",
+                                b.name, p.position,
                             ),
                         ));
                     }
-                    points.iter().fold(
-                        (
-                            DVec2::splat(Real::INFINITY),
-                            DVec2::splat(Real::NEG_INFINITY),
-                        ),
-                        |(lo, hi), p| {
-                            let half = p.domain(spacing).1;
-                            (lo.min(p.position - half), hi.max(p.position + half))
-                        },
-                    )
+                    domain_bounds(&points, spacing)
                 }
                 _ => b.shape.bounds(),
             };
