@@ -8,6 +8,7 @@
 //! bit-identical for any thread count. Patch buffers are kept between steps:
 //! after the first step a scatter allocates nothing.
 
+use crate::components::NodeRect;
 use crate::math::{DVec2, Real};
 use crate::shape_functions::{STENCIL_WIDTH, Stencil};
 use rayon::prelude::*;
@@ -76,30 +77,42 @@ impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
             });
     }
 
-    /// Adds the scattered values into `nodes` (row-major, `row_len` nodes per
-    /// row) with `merge`, rows in parallel, patches in chunk order per row.
+    /// Adds the scattered values into `nodes`, a row-major field stored
+    /// over `window`, with `merge`, rows in parallel, patches in chunk order
+    /// per row. Every patch must lie inside the window (a layer's window
+    /// covers its active nodes, which cover its points' stencils).
     pub fn add_into<N: Send>(
         &self,
         nodes: &mut [N],
-        row_len: usize,
+        window: NodeRect,
         merge: impl Fn(&mut N, T) + Sync,
     ) {
-        nodes
-            .par_chunks_mut(row_len)
-            .with_min_len(MIN_NODES_PER_TASK.div_ceil(row_len))
-            .enumerate()
-            .for_each(|(j, row)| {
-                for patch in &self.patches {
-                    if j < patch.origin[1] || j >= patch.origin[1] + patch.height {
-                        continue;
-                    }
-                    let start = (j - patch.origin[1]) * patch.width;
-                    let values = &patch.values[start..start + patch.width];
-                    for (node, value) in row[patch.origin[0]..].iter_mut().zip(values) {
-                        merge(node, *value);
-                    }
+        for patch in &self.patches {
+            let rect = NodeRect {
+                start: patch.origin,
+                end: [
+                    patch.origin[0] + patch.width,
+                    patch.origin[1] + patch.height,
+                ],
+            };
+            assert!(
+                window.covers(rect),
+                "a scatter patch {rect:?} reaches past the layer's stored nodes {window:?}"
+            );
+        }
+        window.rows_mut(window, nodes).for_each(|(j, row)| {
+            for patch in &self.patches {
+                if j < patch.origin[1] || j >= patch.origin[1] + patch.height {
+                    continue;
                 }
-            });
+                let start = (j - patch.origin[1]) * patch.width;
+                let values = &patch.values[start..start + patch.width];
+                let first = patch.origin[0] - window.start[0];
+                for (node, value) in row[first..].iter_mut().zip(values) {
+                    merge(node, *value);
+                }
+            }
+        });
     }
 }
 
@@ -157,7 +170,7 @@ mod tests {
                 let mut scatter = Scatter::<Real>::default();
                 scatter.scatter(&stencils, |p| 1.0 + p as Real, |m, w, _| m * w);
                 let mut grid = vec![0.0; nodes[0] * nodes[1]];
-                scatter.add_into(&mut grid, nodes[0], |n, v| *n += v);
+                scatter.add_into(&mut grid, NodeRect::whole(nodes), |n, v| *n += v);
                 grid
             })
         };

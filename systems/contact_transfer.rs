@@ -108,6 +108,10 @@ fn add_with_hat_functions(grid: &Grid, layer: &mut GridLayer, at: DVec2, force: 
         (1, 1, fx * fy),
     ];
     for (di, dj, w) in weights {
-        layer.nodes[(j + dj) * nx + i + di].external_force += w * force;
+        // The cell is within the active nodes of a point inside the grid;
+        // a point that has left the grid (reported by P2G) may miss them.
+        if let Some(node) = layer.node_mut([i + di, j + dj]) {
+            node.external_force += w * force;
+        }
     }
 }

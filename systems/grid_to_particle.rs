@@ -43,7 +43,6 @@ pub fn grid_to_particle(
         &mut TransferScratch,
     )>,
 ) {
-    let row_len = grid.nodes()[0];
     let (lo, hi) = grid.wall_bounds();
     let (dt, beta, alpha) = (clock.dt, settings.pic_fraction, settings.particle_damping);
     let forward = settings.position_update == PositionUpdate::Forward;
@@ -51,12 +50,14 @@ pub fn grid_to_particle(
         let TransferScratch { stencils, xpic, .. } = &mut *scratch;
         let order = settings.xpic_order.unwrap_or(0);
         if order >= 1 {
-            xpic_velocities(order, &points.mass, layer, stencils, row_len, xpic);
+            xpic_velocities(order, &points.mass, layer, stencils, xpic);
         }
+        let window = layer.window();
+        let (origin, row_len) = (window.start.map(|k| k as u32), window.width());
         let MaterialPoints {
             position, velocity, ..
         } = &mut *points;
-        let nodes = &layer.nodes;
+        let nodes = layer.nodes();
         let star = &xpic.star;
         travel.0 = (
             position.par_iter_mut(),
@@ -68,14 +69,16 @@ pub fn grid_to_particle(
             .map(|(x, v, stencil)| {
                 let zero = (DVec2::ZERO, DVec2::ZERO);
                 let (grid_old, grid_new) =
-                    stencil.gather(nodes, row_len, zero, |(old, new), node, w, _| {
+                    stencil.gather(nodes, origin, row_len, zero, |(old, new), node, w, _| {
                         (old + w * node.velocity, new + w * node.velocity_new)
                     });
                 // At α = 0 this is the undamped change, bit for bit.
                 let change = local_damping(grid_new - grid_old, *v, alpha);
                 let step = if order >= 1 {
                     let smoothed =
-                        stencil.gather(star, row_len, DVec2::ZERO, |acc, u, w, _| acc + w * *u);
+                        stencil.gather(star, origin, row_len, DVec2::ZERO, |acc, u, w, _| {
+                            acc + w * *u
+                        });
                     let next = smoothed + change;
                     let step = (grid_old + 0.5 * (next - *v)) * dt;
                     *v = next;
@@ -117,7 +120,6 @@ fn xpic_velocities(
     mass: &[Real],
     layer: &GridLayer,
     stencils: &[Stencil],
-    row_len: usize,
     xpic: &mut XpicScratch,
 ) {
     let XpicScratch {
@@ -127,16 +129,17 @@ fn xpic_velocities(
         current,
         star,
     } = xpic;
-    let (active, nodes) = (layer.active, &layer.nodes);
+    let (active, window, nodes) = (layer.active(), layer.window(), layer.nodes());
+    let (origin, row_len) = (window.start.map(|k| k as u32), window.width());
     let m = Real::from(order);
     for field in [&mut *star, &mut *previous, &mut *current] {
         field.resize(nodes.len(), DVec2::ZERO);
     }
     active
-        .rows_mut(star, row_len)
-        .zip(active.rows_mut(previous, row_len))
+        .rows_mut(window, star)
+        .zip(active.rows_mut(window, previous))
         .for_each(|((j, star), (_, previous))| {
-            let row = active.row(nodes, row_len, j);
+            let row = active.row(window, nodes, j);
             for ((s, u), node) in star.iter_mut().zip(previous.iter_mut()).zip(row) {
                 *s = m * node.velocity;
                 *u = node.velocity;
@@ -153,17 +156,19 @@ fn xpic_velocities(
             .zip(stencils.par_iter())
             .with_min_len(MIN_POINTS_PER_TASK)
             .for_each(|(v, stencil)| {
-                *v = stencil.gather(from, row_len, DVec2::ZERO, |acc, u, w, _| acc + w * *u);
+                *v = stencil.gather(from, origin, row_len, DVec2::ZERO, |acc, u, w, _| {
+                    acc + w * *u
+                });
             });
         let carried = &*point_velocity;
         momentum.scatter(stencils, |p| mass[p] * carried[p], |mv, w, _| w * *mv);
         active
-            .rows_mut(current, row_len)
+            .rows_mut(window, current)
             .for_each(|(_, row)| row.fill(DVec2::ZERO));
-        momentum.add_into(current, row_len, |u, mv| *u += mv);
+        momentum.add_into(current, window, |u, mv| *u += mv);
         let cutoff = layer.mass_cutoff;
-        active.rows_mut(current, row_len).for_each(|(j, current)| {
-            let row = active.row(nodes, row_len, j);
+        active.rows_mut(window, current).for_each(|(j, current)| {
+            let row = active.row(window, nodes, j);
             for (u, node) in current.iter_mut().zip(row) {
                 *u = if node.mass > cutoff {
                     *u / node.mass
@@ -174,8 +179,8 @@ fn xpic_velocities(
         });
         layer.constrain(current);
         active
-            .rows_mut(star, row_len)
-            .zip(active.rows_mut(current, row_len))
+            .rows_mut(window, star)
+            .zip(active.rows_mut(window, current))
             .for_each(|((_, star), (_, current))| {
                 for (s, u) in star.iter_mut().zip(current.iter()) {
                     *s += coefficient * *u;

@@ -2,7 +2,7 @@
 
 use crate::components::{GridLayer, MaterialPoints, TransferScratch};
 use crate::math::{DVec2, local_damping};
-use crate::resources::{Clock, Grid, Settings, SharedLayers};
+use crate::resources::{Clock, Settings, SharedLayers};
 use bevy_ecs::prelude::*;
 
 /// Scatters the internal force f_i,int = −Σ_p V_p σ_p · G_ip, sums it over
@@ -10,18 +10,16 @@ use bevy_ecs::prelude::*;
 /// f_i = f_ext + f_int, less grid damping α_g |f| sign(v) per component
 /// (Cundall 1987), p_i ← p_i + f_i Δt and v_i^{n+1} = p_i / m_i, constrained.
 ///
-/// Reads: `Grid`, `Settings`, `Clock`, `MaterialPoints` (volume, stress),
+/// Reads: `Settings`, `Clock`, `MaterialPoints` (volume, stress),
 /// `TransferScratch::stencils`, `GridLayer::nodes` (mass, external force, velocity).
 /// Writes: `TransferScratch::internal_force`, `GridLayer::nodes` (internal force, momentum, new velocity),
 /// `SharedLayers` (scratch).
 pub fn solve_nodal_momentum(
-    grid: Res<Grid>,
     settings: Res<Settings>,
     clock: Res<Clock>,
     mut shared: ResMut<SharedLayers>,
     mut bodies: Query<(&MaterialPoints, &mut GridLayer, &mut TransferScratch)>,
 ) {
-    let row_len = grid.nodes()[0];
     let (dt, alpha) = (clock.dt, settings.grid_damping);
     for (points, mut layer, mut scratch) in &mut bodies {
         let TransferScratch {
@@ -34,7 +32,8 @@ pub fn solve_nodal_momentum(
             |p| (points.volume[p], points.stress[p]),
             |(volume, stress), _, g| -*volume * stress.dot(g),
         );
-        internal_force.add_into(&mut layer.nodes, row_len, |n, f| n.internal_force += f);
+        let window = layer.window();
+        internal_force.add_into(layer.nodes_mut(), window, |n, f| n.internal_force += f);
     }
     shared.share(
         |entity, f| {

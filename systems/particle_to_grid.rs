@@ -2,7 +2,8 @@
 //! layer (eqs. 7b, 8c, 8d), then the nodal velocity p_i / m_i.
 
 use crate::components::{
-    BodyAcceleration, BodyName, GridLayer, MassMomentumForce, MaterialPoints, TransferScratch,
+    BodyAcceleration, BodyName, GridLayer, MassMomentumForce, MaterialPoints, NodeRect,
+    TransferScratch,
 };
 use crate::contact::ForceApplication;
 use crate::math::DVec2;
@@ -60,6 +61,9 @@ pub fn particle_to_grid(
         let outside =
             kernel.fill_stencils(&points.position, &points.half_size, &stencil_grid, stencils);
         if let Some(p) = outside {
+            // Its stencil is a zero one at node (0, 0): store the whole grid
+            // so every index stays valid until the run stops.
+            layer.expand(NodeRect::whole(nodes));
             diagnostics.report(NumericalFailure {
                 step: clock.step + 1,
                 time: clock.time,
@@ -86,7 +90,8 @@ pub fn particle_to_grid(
                 external_force: w * f,
             },
         );
-        mass_momentum.add_into(&mut layer.nodes, nodes[0], |n, t| {
+        let window = layer.window();
+        mass_momentum.add_into(layer.nodes_mut(), window, |n, t| {
             n.mass += t.mass;
             n.momentum += t.momentum;
             n.external_force += t.external_force;

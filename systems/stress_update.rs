@@ -3,7 +3,7 @@
 use crate::components::{GridLayer, GridNode, Material, MaterialPoints, TransferScratch};
 use crate::materials::{ConstitutiveModel, MaterialModel, PointStep};
 use crate::math::{DMat2, Real, outer, rate_of_deformation, spin};
-use crate::resources::{Clock, Grid, UpdateScheme};
+use crate::resources::{Clock, UpdateScheme};
 use crate::shape_functions::Stencil;
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -16,18 +16,17 @@ use rayon::prelude::*;
 /// gradients at x^n. The scheme is fixed here, with the order of the sets,
 /// when the schedule is built.
 ///
-/// Reads: `Grid`, `Clock`, `GridLayer`, `TransferScratch::stencils`, `Material`.
+/// Reads: `Clock`, `GridLayer`, `TransferScratch::stencils`, `Material`.
 /// Writes: `MaterialPoints` (deformation gradient, volume, stress, strain).
-pub fn update_stress(
-    scheme: UpdateScheme,
-) -> impl FnMut(Res<Grid>, Res<Clock>, Query<StressUpdateData>) {
+pub fn update_stress(scheme: UpdateScheme) -> impl FnMut(Res<Clock>, Query<StressUpdateData>) {
     let after_momentum = scheme == UpdateScheme::Usl;
-    move |grid, clock, mut bodies| {
-        let row_len = grid.nodes()[0];
+    move |clock, mut bodies| {
         for (material, mut points, layer, scratch) in &mut bodies {
+            let window = layer.window();
             let step = StrainStep {
-                nodes: &layer.nodes,
-                row_len,
+                nodes: layer.nodes(),
+                origin: window.start.map(|k| k as u32),
+                row_len: window.width(),
                 dt: clock.dt,
                 after_momentum,
             };
@@ -52,7 +51,11 @@ type StressUpdateData = (
 
 /// What the stress update of one body reads from its layer.
 struct StrainStep<'a> {
+    /// The layer's stored nodes.
     nodes: &'a [GridNode],
+    /// The grid node of the first stored node.
+    origin: [u32; 2],
+    /// Stored nodes per row.
     row_len: usize,
     dt: Real,
     after_momentum: bool,
@@ -105,13 +108,19 @@ impl StrainStep<'_> {
     #[inline(always)]
     fn velocity_gradient(&self, stencil: &Stencil) -> DMat2 {
         let after = self.after_momentum;
-        stencil.gather(self.nodes, self.row_len, DMat2::ZERO, |l, node, _, g| {
-            let v = if after {
-                node.velocity_new
-            } else {
-                node.velocity
-            };
-            l + outer(v, g)
-        })
+        stencil.gather(
+            self.nodes,
+            self.origin,
+            self.row_len,
+            DMat2::ZERO,
+            |l, node, _, g| {
+                let v = if after {
+                    node.velocity_new
+                } else {
+                    node.velocity
+                };
+                l + outer(v, g)
+            },
+        )
     }
 }

@@ -6,29 +6,35 @@ mod common;
 use mpdem::components::NodeRect;
 use mpdem::contact::ForceApplication;
 use mpdem::prelude::*;
-use mpdem::scene::Shape;
+use mpdem::scene::{InitialVelocity, Shape};
 use mpdem::shape_functions::ShapeFunction;
 
-/// Makes every node of every layer active, as if there were no active
-/// rectangle (runs after the reset and the boundary conditions, before any
-/// transfer).
+/// Makes every node of every layer active and stored, as if there were no
+/// active rectangle (runs after the reset and the boundary conditions,
+/// before any transfer).
 fn activate_the_whole_grid(grid: Res<Grid>, mut layers: Query<&mut GridLayer>) {
     for mut layer in &mut layers {
-        layer.active = NodeRect::whole(grid.nodes());
+        layer.expand(NodeRect::whole(grid.nodes()));
     }
 }
 
-/// Checks that every node outside a layer's active rectangle holds zero.
+/// Checks that every stored node outside a layer's active rectangle holds
+/// zero, and that the layer stores only the nodes around its active ones.
 fn nothing_outside_the_active_nodes(sim: &mut Simulation) {
-    let row_len = sim.world().resource::<Grid>().nodes()[0];
     let mut layers = sim.world_mut().query::<&GridLayer>();
     for layer in layers.iter(sim.world()) {
-        for (k, node) in layer.nodes.iter().enumerate() {
-            if !layer.active.contains([k % row_len, k / row_len]) {
+        let (window, active) = (layer.window(), layer.active());
+        assert!(window.covers(active), "{window:?} misses {active:?}");
+        for (k, node) in layer.nodes().iter().enumerate() {
+            let at = [
+                window.start[0] + k % window.width(),
+                window.start[1] + k / window.width(),
+            ];
+            if !active.contains(at) {
                 assert_eq!(
                     *node,
                     Default::default(),
-                    "node {k} outside the active nodes"
+                    "node {at:?} outside the active nodes"
                 );
             }
         }
@@ -124,5 +130,43 @@ fn colliding_rings_and_a_contact_group_give_the_whole_grids_result() {
     upper.group = Some("column".into());
     column.bodies.push(upper);
     let (active, whole) = hashes(&column, 300);
+    assert_eq!(active, whole);
+}
+
+#[test]
+fn rings_flying_across_the_grid_move_their_stored_nodes_and_give_the_whole_grids_result() {
+    // Each layer stores a window around its active nodes, moved when the
+    // body leaves it: two rings without a contact law pass through each
+    // other at ±300 m/s, 0.19 cells a step, 56 cells in 300 steps.
+    let mut rings = common::load_scene("two_rings.ron");
+    rings.body_contacts.clear();
+    for body in &mut rings.bodies {
+        body.points_per_cell = 1;
+        body.contact_radius = None;
+    }
+    rings.bodies[0].velocity = InitialVelocity::Constant(DVec2::new(300.0, 0.0));
+    rings.bodies[1].velocity = InitialVelocity::Constant(DVec2::new(-300.0, 0.0));
+    let mut sim = Simulation::from_scene(&rings).unwrap_or_else(|e| panic!("{e}"));
+    let mut windows = vec![Vec::new(); 2];
+    for _ in 0..300 {
+        sim.step().unwrap_or_else(|e| panic!("{e}"));
+        let mut layers = sim.world_mut().query::<&GridLayer>();
+        for (seen, layer) in windows.iter_mut().zip(layers.iter(sim.world())) {
+            if seen.last() != Some(&layer.window()) {
+                seen.push(layer.window());
+            }
+        }
+    }
+    for seen in &windows {
+        // The window moves with the ring, and spans its active nodes (its
+        // 50 cells plus two of reach each side: at most 56 nodes) and a
+        // margin of a quarter of them each side: at most 84 nodes, of the
+        // grid's 251 x 126.
+        assert!(seen.len() >= 3, "the window moved {} times", seen.len() - 1);
+        for window in seen {
+            assert!(window.width() <= 84 && window.height() <= 84, "{window:?}");
+        }
+    }
+    let (active, whole) = hashes(&rings, 300);
     assert_eq!(active, whole);
 }

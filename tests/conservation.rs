@@ -43,8 +43,8 @@ fn totals(sim: &mut Simulation) -> (Real, DVec2, Real, Real, DVec2) {
         .map(|(m, v)| m * v.length())
         .sum();
     let layer = sim.world().get::<GridLayer>(entity).expect("layer");
-    let grid_mass: Real = layer.nodes.iter().map(|n| n.mass).sum();
-    let grid_momentum: DVec2 = layer.nodes.iter().map(|n| n.mass * n.velocity).sum();
+    let grid_mass: Real = layer.nodes().iter().map(|n| n.mass).sum();
+    let grid_momentum: DVec2 = layer.nodes().iter().map(|n| n.mass * n.velocity).sum();
     (mass, momentum, scale, grid_mass, grid_momentum)
 }
 

@@ -15,9 +15,9 @@ struct Seen(Vec<(&'static str, u64, Real, Real)>);
 fn spy(label: &'static str) -> impl FnMut(Res<Clock>, Query<&GridLayer>, ResMut<Seen>) {
     move |clock, layers, mut seen| {
         let layer = layers.iter().next().expect("one body");
-        let mass: Real = layer.nodes.iter().map(|n| n.mass).sum();
+        let mass: Real = layer.nodes().iter().map(|n| n.mass).sum();
         let speed = layer
-            .nodes
+            .nodes()
             .iter()
             .map(|n| n.velocity_new.length())
             .fold(0.0, Real::max);

@@ -51,7 +51,7 @@ fn delivered(application: ForceApplication) -> (DVec2, DVec2) {
     let world = sim.world();
     let points = world.get::<MaterialPoints>(body).unwrap();
     let layer = world.get::<GridLayer>(body).unwrap();
-    let on_grid: DVec2 = layer.nodes.iter().map(|n| n.external_force).sum();
+    let on_grid: DVec2 = layer.nodes().iter().map(|n| n.external_force).sum();
     let expected: DVec2 = (0..points.len())
         .map(|p| points.mass[p] * DVec2::new(0.0, -9.81) + points.contact_force[p])
         .sum();

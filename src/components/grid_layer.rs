@@ -47,8 +47,8 @@ impl Fix {
 /// A constrained node of a layer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NodeConstraint {
-    /// Row-major node index.
-    pub node: u32,
+    /// The node's column and row.
+    pub node: [u32; 2],
     /// The held components.
     pub fix: Fix,
 }
@@ -77,9 +77,31 @@ impl NodeRect {
         self.end[0] <= self.start[0] || self.end[1] <= self.start[1]
     }
 
+    /// Nodes per row (zero when empty).
+    pub fn width(self) -> usize {
+        self.end[0].saturating_sub(self.start[0])
+    }
+
+    /// Number of rows (zero when empty).
+    pub fn height(self) -> usize {
+        self.end[1].saturating_sub(self.start[1])
+    }
+
+    /// Number of nodes.
+    pub fn area(self) -> usize {
+        self.width() * self.height()
+    }
+
     /// Whether node (`i`, `j`) lies in the rectangle.
     pub fn contains(self, [i, j]: [usize; 2]) -> bool {
         (self.start[0]..self.end[0]).contains(&i) && (self.start[1]..self.end[1]).contains(&j)
+    }
+
+    /// Whether every node of `other` lies in the rectangle (an empty `other`
+    /// always does).
+    pub fn covers(self, other: Self) -> bool {
+        other.is_empty()
+            || (0..2).all(|d| self.start[d] <= other.start[d] && other.end[d] <= self.end[d])
     }
 
     /// The smallest rectangle holding both.
@@ -99,50 +121,93 @@ impl NodeRect {
         }
     }
 
-    /// The rectangle's part of each row of `values` (row-major, `row_len`
-    /// per row), with the row's index, rows in parallel.
+    /// The rectangle widened by `margin[d]` nodes on both sides along each
+    /// direction d, clipped to a grid of `nodes` nodes.
+    pub fn grown(self, margin: [usize; 2], nodes: [usize; 2]) -> Self {
+        Self {
+            start: [0, 1].map(|d| self.start[d].saturating_sub(margin[d])),
+            end: [0, 1].map(|d| (self.end[d] + margin[d]).min(nodes[d])),
+        }
+    }
+
+    /// Where node (`i`, `j`) sits in a row-major field stored over this
+    /// rectangle; `None` outside it.
+    #[inline]
+    pub fn index_of(self, [i, j]: [usize; 2]) -> Option<usize> {
+        self.contains([i, j])
+            .then(|| (j - self.start[1]) * self.width() + i - self.start[0])
+    }
+
+    /// The rectangle's part of each row of `values`, a row-major field
+    /// stored over `storage` (which must cover the rectangle), with the
+    /// row's grid index, rows in parallel.
     pub fn rows_mut<T: Send>(
         self,
+        storage: Self,
         values: &mut [T],
-        row_len: usize,
     ) -> impl IndexedParallelIterator<Item = (usize, &mut [T])> {
-        let [first, last] = [self.start[1], self.end[1].max(self.start[1])];
-        let columns = self.start[0]..self.end[0].max(self.start[0]);
-        let width = columns.len().max(1);
-        values[first * row_len..last * row_len]
+        debug_assert!(storage.covers(self) && values.len() == storage.area());
+        let row_len = storage.width().max(1);
+        let rows = if self.is_empty() {
+            0..0
+        } else {
+            self.start[1] - storage.start[1]..self.end[1] - storage.start[1]
+        };
+        let columns = if self.is_empty() {
+            0..0
+        } else {
+            self.start[0] - storage.start[0]..self.end[0] - storage.start[0]
+        };
+        let first = storage.start[1] + rows.start;
+        values[rows.start * row_len..rows.end * row_len]
             .par_chunks_mut(row_len)
-            .with_min_len(MIN_NODES_PER_TASK.div_ceil(width))
+            .with_min_len(MIN_NODES_PER_TASK.div_ceil(columns.len().max(1)))
             .enumerate()
             .map(move |(k, row)| (first + k, &mut row[columns.clone()]))
     }
 
-    /// The rectangle's part of row `j` of `values` (row-major, `row_len` per row).
-    pub fn row<T>(self, values: &[T], row_len: usize, j: usize) -> &[T] {
-        let first = j * row_len;
-        &values[first + self.start[0]..first + self.end[0].max(self.start[0])]
+    /// The rectangle's part of grid row `j` of `values`, a row-major field
+    /// stored over `storage` (which must cover the rectangle).
+    pub fn row<T>(self, storage: Self, values: &[T], j: usize) -> &[T] {
+        if self.is_empty() {
+            return &[];
+        }
+        let first = (j - storage.start[1]) * storage.width() + self.start[0] - storage.start[0];
+        &values[first..first + self.width()]
     }
 }
 
-/// One body's layer: every node of the grid, row-major (index j × nx + i).
-/// Layers never exchange momentum; bodies meet only through contact, except
-/// the bodies of one contact group, whose copies of the layer are summed
-/// after every scatter ([`crate::resources::SharedLayers`]).
+/// Fewest nodes a layer's storage reaches past its active nodes on each
+/// side when it has to move or grow: a body travels at most a cell per step
+/// (CFL), so the storage moves at most every eight steps, in practice
+/// hundreds of steps apart.
+pub const WINDOW_MARGIN_NODES: usize = 8;
+
+/// One body's layer of the grid, row-major over its `window`: the rectangle
+/// of nodes its storage covers, which holds the `active` nodes, those the
+/// body's points reach this step (see [`GridLayer::reset`]), plus a margin,
+/// so a small body on a large grid stores only the nodes around it. Layers
+/// never exchange momentum; bodies meet only through contact, except the
+/// bodies of one contact group, whose copies of the layer are summed after
+/// every scatter ([`crate::resources::SharedLayers`]).
 ///
-/// Only the nodes of `active`, around the body's points, are reset and
-/// solved each step (and smoothed by XPIC). Every
-/// node outside `active` holds zero: a system that writes nodes must stay
-/// inside it, and points must not move between `GridReset` and
-/// `ParticleToGrid`, as `active` is set from their positions at the reset.
+/// Only the active nodes are reset and solved each step (and smoothed by
+/// XPIC). Every other node holds zero, stored in the window or not: a
+/// system that writes nodes must stay inside `active`, and points must not
+/// move between `GridReset` and `ParticleToGrid`, as `active` is set from
+/// their positions at the reset.
 #[derive(Component, Clone, Debug)]
 pub struct GridLayer {
-    /// Nodal quantities.
-    pub nodes: Vec<GridNode>,
-    /// Nodes per row (the grid's nx).
-    pub row_len: usize,
-    /// The nodes this step's points can reach (set when the layer is reset;
-    /// for a contact group, the union of its members').
-    pub active: NodeRect,
-    /// Nodes whose velocity is constrained (grid edges and regions), sorted by node.
+    /// Nodal quantities of the window's nodes, row-major.
+    nodes: Vec<GridNode>,
+    /// The nodes stored.
+    window: NodeRect,
+    /// The nodes this step's points can reach (for a contact group, the
+    /// union of its members').
+    active: NodeRect,
+    /// Nodes of the whole grid along x and y.
+    grid_nodes: [usize; 2],
+    /// Nodes whose velocity is constrained (grid edges and regions), sorted by row then column.
     pub constraints: Vec<NodeConstraint>,
     /// Nodes lighter than this (kg) are treated as empty: their velocity is zero.
     /// Set to 1e-9 of the body's smallest point mass, far below any real node
@@ -151,36 +216,147 @@ pub struct GridLayer {
 }
 
 impl GridLayer {
-    /// A zeroed layer for a grid of `nodes` nodes along x and y, all active
-    /// until its first reset.
+    /// An empty layer for a grid of `nodes` nodes along x and y: it stores
+    /// and activates nodes at its first reset.
     pub fn new(nodes: [usize; 2], mass_cutoff: Real) -> Self {
         Self {
-            nodes: vec![GridNode::default(); nodes[0] * nodes[1]],
-            row_len: nodes[0],
-            active: NodeRect::whole(nodes),
+            nodes: Vec::new(),
+            window: NodeRect::default(),
+            active: NodeRect::default(),
+            grid_nodes: nodes,
             constraints: Vec::new(),
             mass_cutoff,
         }
     }
 
+    /// The stored nodes, row-major over [`Self::window`].
+    pub fn nodes(&self) -> &[GridNode] {
+        &self.nodes
+    }
+
+    /// The stored nodes, row-major over [`Self::window`], to write: only the
+    /// active ones may be changed.
+    pub fn nodes_mut(&mut self) -> &mut [GridNode] {
+        &mut self.nodes
+    }
+
+    /// The rectangle of nodes stored.
+    pub fn window(&self) -> NodeRect {
+        self.window
+    }
+
+    /// The nodes this step's points can reach.
+    pub fn active(&self) -> NodeRect {
+        self.active
+    }
+
+    /// Node (`i`, `j`) to write; `None` if it is not stored (then it holds
+    /// zero and must stay so).
+    pub fn node_mut(&mut self, at: [usize; 2]) -> Option<&mut GridNode> {
+        self.window.index_of(at).map(|k| &mut self.nodes[k])
+    }
+
+    /// Zeroes the active nodes, then makes `rect` the active nodes.
+    pub fn reset(&mut self, rect: NodeRect) {
+        self.for_each_active(|n| *n = GridNode::default());
+        self.active = NodeRect::default();
+        self.expand(rect);
+    }
+
+    /// Adds `rect` to the active nodes, keeping every value. When the
+    /// window does not cover them, it moves to cover them with a margin of
+    /// [`WINDOW_MARGIN_NODES`] or a quarter of their size, whichever is
+    /// larger (the only allocation of a step, and a rare one).
+    pub fn expand(&mut self, rect: NodeRect) {
+        let active = self.active.union(rect);
+        if !self.window.covers(active) {
+            let margin = [0, 1].map(|d| {
+                let size = active.end[d] - active.start[d];
+                WINDOW_MARGIN_NODES.max(size / 4)
+            });
+            let window = active.grown(margin, self.grid_nodes);
+            let mut nodes = vec![GridNode::default(); window.area()];
+            let (old, old_window) = (&self.nodes, self.window);
+            self.active
+                .rows_mut(window, &mut nodes)
+                .for_each(|(j, row)| row.copy_from_slice(self.active.row(old_window, old, j)));
+            self.nodes = nodes;
+            self.window = window;
+        }
+        self.active = active;
+    }
+
     /// Applies `f` to every active node, rows in parallel.
     pub fn for_each_active(&mut self, f: impl Fn(&mut GridNode) + Sync + Send) {
         self.active
-            .rows_mut(&mut self.nodes, self.row_len)
+            .rows_mut(self.window, &mut self.nodes)
             .for_each(|(_, row)| row.iter_mut().for_each(&f));
     }
 
-    /// Applies the constraints to the field selected by `field`.
+    /// Applies the constraints of the active nodes to the field selected by
+    /// `field` (the others hold zero).
     pub fn apply_constraints(&mut self, field: impl Fn(&mut GridNode) -> &mut DVec2) {
-        for c in &self.constraints {
-            c.fix.apply(field(&mut self.nodes[c.node as usize]));
+        let Self {
+            nodes,
+            window,
+            active,
+            constraints,
+            ..
+        } = self;
+        for c in constraints.iter() {
+            let at = c.node.map(|k| k as usize);
+            if active.contains(at)
+                && let Some(k) = window.index_of(at)
+            {
+                c.fix.apply(field(&mut nodes[k]));
+            }
         }
     }
 
-    /// Applies the constraints to `values`, one per node (row-major).
+    /// Applies the constraints of the active nodes to `values`, one per
+    /// node of the window (row-major).
     pub fn constrain(&self, values: &mut [DVec2]) {
         for c in &self.constraints {
-            c.fix.apply(&mut values[c.node as usize]);
+            let at = c.node.map(|k| k as usize);
+            if self.active.contains(at)
+                && let Some(k) = self.window.index_of(at)
+            {
+                c.fix.apply(&mut values[k]);
+            }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_layer_keeps_its_values_when_its_window_moves() {
+        let mut layer = GridLayer::new([100, 50], 0.0);
+        let rect = |i: usize, j: usize| NodeRect {
+            start: [i, j],
+            end: [i + 5, j + 4],
+        };
+        layer.reset(rect(10, 10));
+        let window = layer.window();
+        // A margin of eight nodes, clipped to the grid.
+        assert_eq!(window.start, [2, 2]);
+        assert_eq!(window.end, [23, 22]);
+        assert_eq!(layer.nodes().len(), window.area());
+        layer.node_mut([12, 11]).unwrap().mass = 3.0;
+        // Inside the window: no move.
+        layer.expand(rect(14, 12));
+        assert_eq!(layer.window(), window);
+        // Beyond it: the window moves and the value stays at its node.
+        layer.expand(rect(40, 30));
+        assert!(layer.window().covers(layer.active()));
+        assert_eq!(layer.node_mut([12, 11]).unwrap().mass, 3.0);
+        let total: Real = layer.nodes().iter().map(|n| n.mass).sum();
+        assert_eq!(total, 3.0);
+        // A reset zeroes the active nodes.
+        layer.reset(rect(90, 40));
+        assert!(layer.nodes().iter().all(|n| n.mass == 0.0));
+        assert_eq!(layer.node_mut([0, 0]), None);
     }
 }

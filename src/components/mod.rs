@@ -12,7 +12,7 @@ pub use body::{
     BodyAcceleration, BodyIndex, BodyName, Material, RegionConstraint, RegionConstraints,
     sort_into_scene_order,
 };
-pub use grid_layer::{Fix, GridLayer, GridNode, NodeConstraint, NodeRect};
+pub use grid_layer::{Fix, GridLayer, GridNode, NodeConstraint, NodeRect, WINDOW_MARGIN_NODES};
 pub use material_points::{MaterialPoints, NewPoint, PointEnergies, StepTravel};
 pub use rigid::{
     BlockContactLaw, BlockContacts, BlockId, BlockOutline, NeighbourList, PartReactions,

@@ -128,7 +128,7 @@ impl Grid {
     }
 
     /// The constraints of a layer: the edge conditions plus the layer's own
-    /// regions, merged per node, sorted by node index.
+    /// regions, merged per node, sorted by row, then column.
     pub fn layer_constraints(&self, regions: &[RegionConstraint]) -> Vec<NodeConstraint> {
         let [nx, ny] = self.nodes();
         let edge_fix = |condition: EdgeCondition, normal_is_x: bool| match condition {
@@ -174,7 +174,7 @@ impl Grid {
                 }
                 if fix.x || fix.y {
                     constraints.push(NodeConstraint {
-                        node: (j * nx + i) as u32,
+                        node: [i as u32, j as u32],
                         fix,
                     });
                 }
@@ -201,9 +201,9 @@ mod tests {
             },
         };
         let c = grid.layer_constraints(&[]);
-        // Nodes 0, 1, 2 (bottom row) and 3, 6 (left column).
-        let nodes: Vec<u32> = c.iter().map(|c| c.node).collect();
-        assert_eq!(nodes, vec![0, 1, 2, 3, 6]);
+        // The bottom row, then the left column.
+        let nodes: Vec<[u32; 2]> = c.iter().map(|c| c.node).collect();
+        assert_eq!(nodes, vec![[0, 0], [1, 0], [2, 0], [0, 1], [0, 2]]);
         assert_eq!(c[0].fix, Fix { x: true, y: true });
         assert_eq!(c[1].fix, Fix { x: false, y: true });
         assert_eq!(c[3].fix, Fix { x: true, y: false });
@@ -220,7 +220,7 @@ mod tests {
                 ..Default::default()
             },
         };
-        // A symmetry line x = 1 (nodes 2, 7, 12) holding x only.
+        // A symmetry line x = 1 (column 2) holding x only.
         let line = RegionConstraint {
             min: DVec2::new(1.0, 0.0),
             max: DVec2::new(1.0, 1.0),
@@ -228,11 +228,11 @@ mod tests {
             fix_y: false,
         };
         let c = grid.layer_constraints(&[line]);
-        let at = |node: u32| c.iter().find(|c| c.node == node).map(|c| c.fix);
-        assert_eq!(at(7), Some(Fix { x: true, y: false }));
-        assert_eq!(at(12), Some(Fix { x: true, y: false }));
-        // Node 2 is also on the slip bottom edge: both components held.
-        assert_eq!(at(2), Some(Fix { x: true, y: true }));
-        assert_eq!(at(6), None);
+        let at = |node: [u32; 2]| c.iter().find(|c| c.node == node).map(|c| c.fix);
+        assert_eq!(at([2, 1]), Some(Fix { x: true, y: false }));
+        assert_eq!(at([2, 2]), Some(Fix { x: true, y: false }));
+        // Node (2, 0) is also on the slip bottom edge: both components held.
+        assert_eq!(at([2, 0]), Some(Fix { x: true, y: true }));
+        assert_eq!(at([1, 1]), None);
     }
 }

@@ -1,6 +1,6 @@
 //! Contact groups (scene `group`): bodies that share one grid layer.
 
-use crate::components::{GridLayer, GridNode};
+use crate::components::{GridLayer, GridNode, NodeRect};
 use bevy_ecs::prelude::{Entity, Resource};
 use rayon::prelude::*;
 
@@ -30,19 +30,23 @@ impl SharedLayers {
     ) {
         let Self { groups, total } = self;
         for group in groups.iter() {
-            let mut first = true;
+            // The members share one active rectangle (or, after a point has
+            // left the grid, the whole grid for one of them: then all take it).
+            let mut rect = NodeRect::default();
             for &member in group {
                 visit(member, &mut |layer: &mut GridLayer| {
-                    let (rect, row_len) = (layer.active, layer.row_len);
-                    if first {
-                        total.resize(layer.nodes.len(), GridNode::default());
-                        rect.rows_mut(total, row_len)
-                            .for_each(|(_, row)| row.fill(GridNode::default()));
-                        first = false;
-                    }
-                    let nodes = &layer.nodes;
-                    rect.rows_mut(total, row_len).for_each(|(j, sums)| {
-                        for (sum, node) in sums.iter_mut().zip(rect.row(nodes, row_len, j)) {
+                    rect = rect.union(layer.active());
+                });
+            }
+            // The sums, row-major over the rectangle.
+            total.clear();
+            total.resize(rect.area(), GridNode::default());
+            for &member in group {
+                visit(member, &mut |layer: &mut GridLayer| {
+                    layer.expand(rect);
+                    let (window, nodes) = (layer.window(), layer.nodes());
+                    rect.rows_mut(rect, total).for_each(|(j, sums)| {
+                        for (sum, node) in sums.iter_mut().zip(rect.row(window, nodes, j)) {
                             add(sum, node);
                         }
                     });
@@ -50,11 +54,11 @@ impl SharedLayers {
             }
             for &member in group {
                 visit(member, &mut |layer: &mut GridLayer| {
-                    let (rect, row_len) = (layer.active, layer.row_len);
+                    let window = layer.window();
                     let total = &*total;
-                    rect.rows_mut(&mut layer.nodes, row_len)
+                    rect.rows_mut(window, layer.nodes_mut())
                         .for_each(|(j, nodes)| {
-                            for (node, sum) in nodes.iter_mut().zip(rect.row(total, row_len, j)) {
+                            for (node, sum) in nodes.iter_mut().zip(rect.row(rect, total, j)) {
                                 set(node, sum);
                             }
                         });

@@ -170,18 +170,20 @@ impl Stencil {
     }
 
     /// Folds `f(acc, value, S_ip, G_ip)` over the nine stencil nodes of a
-    /// row-major field `values` with `row_len` nodes per row.
+    /// row-major field `values` whose first value is grid node `origin`,
+    /// with `row_len` nodes per row.
     #[inline(always)]
     pub fn gather<T, A>(
         &self,
         values: &[T],
+        origin: [u32; 2],
         row_len: usize,
         mut acc: A,
         mut f: impl FnMut(A, &T, Real, DVec2) -> A,
     ) -> A {
-        let column = self.base[0] as usize;
+        let column = (self.base[0] - origin[0]) as usize;
         for b in 0..3 {
-            let first = (self.base[1] as usize + b) * row_len + column;
+            let first = ((self.base[1] - origin[1]) as usize + b) * row_len + column;
             let row = values[first..first + 3]
                 .iter()
                 .zip(self.wx.iter().zip(&self.gx));
@@ -319,10 +321,16 @@ mod tests {
             .map(|k| DVec2::new((k % NODES[0]) as Real * H, (k / NODES[0]) as Real * H))
             .collect();
         let zero = (0.0, DVec2::ZERO, DVec2::ZERO, DMat2Sum::default());
-        st.gather(&nodes, NODES[0], zero, |(s, g, x, mut gx), xi, w, grad| {
-            gx.add(*xi, grad);
-            (s + w, g + grad, x + w * *xi, gx)
-        })
+        st.gather(
+            &nodes,
+            [0, 0],
+            NODES[0],
+            zero,
+            |(s, g, x, mut gx), xi, w, grad| {
+                gx.add(*xi, grad);
+                (s + w, g + grad, x + w * *xi, gx)
+            },
+        )
     }
 
     /// Σ x_i ⊗ G_ip, which must be the identity for linear reproduction.
