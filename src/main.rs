@@ -90,20 +90,23 @@ fn main() -> ExitCode {
     }
 }
 
-/// Runs `f` on a rayon pool of `threads` workers (or the global pool).
+/// Runs `f` on a rayon pool of `threads` workers (default: rayon's, one
+/// per core or `RAYON_NUM_THREADS`). The step runs on one of the pool's
+/// threads: work handed to the pool from outside it goes through a shared
+/// queue that allocates, work from inside does not.
 fn with_threads(
     threads: Option<usize>,
     f: impl FnOnce() -> Result<(), String> + Send,
 ) -> Result<(), String> {
+    let mut pool = rayon::ThreadPoolBuilder::new();
     match threads {
-        None => f(),
-        Some(0) => Err("--threads must be at least 1".into()),
-        Some(n) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .map_err(|e| format!("cannot start {n} threads: {e}"))?
-            .install(f),
+        None => {}
+        Some(0) => return Err("--threads must be at least 1".into()),
+        Some(n) => pool = pool.num_threads(n),
     }
+    pool.build()
+        .map_err(|e| format!("cannot start the threads: {e}"))?
+        .install(f)
 }
 
 fn check(path: &Path) -> Result<(), String> {

@@ -111,6 +111,9 @@ pub fn compute_body_contacts(
         chunks.par_iter_mut().enumerate().for_each(|(c, chunk)| {
             chunk.candidates.clear();
             let range = (c * per_chunk).min(own.len())..((c + 1) * per_chunk).min(own.len());
+            // Room for every point of the range at once, so the buffer is
+            // sized on the first step, not as contact spreads.
+            chunk.candidates.reserve(range.len());
             for p in range {
                 let cell = own[p] as usize;
                 if cells.mask_around(marks, cell) & wanted != 0 {

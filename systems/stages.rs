@@ -40,7 +40,7 @@ fn stage_end(world: &mut World, plan: &mut StagePlan) -> Option<StageEndReason> 
     let clock = *world.resource::<Clock>();
     let elapsed = clock.time - plan.started;
     let elapsed_enough = |t: Real| elapsed >= t - 0.5 * clock.dt;
-    let bodies = bodies_in_order(world);
+    let bodies = &plan.bodies;
     let end = plan.scene.stages[plan.current].end.clone();
     let settled = match end {
         StageEnd::Duration(d) => {
@@ -223,6 +223,7 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
             .collect(),
         _ => Vec::new(),
     };
+    plan.bodies = bodies;
     warnings
 }
 

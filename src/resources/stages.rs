@@ -14,6 +14,9 @@ pub struct StagePlan {
     pub current: usize,
     /// Simulated time at which the current stage began (s).
     pub started: Real,
+    /// The bodies in scene order, taken when the current stage began (the
+    /// end conditions read them each step without querying the world).
+    pub bodies: Vec<Entity>,
     /// Largest kinetic energy of the current stage so far (J/m).
     pub peak_kinetic: Real,
     /// Stresses of every body (scene order) after the previous step, kept

@@ -185,6 +185,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
             scene: scene.clone(),
             current: 0,
             started: 0.0,
+            bodies: Vec::new(),
             peak_kinetic: 0.0,
             previous_stress: Vec::new(),
             loads: Vec::new(),
