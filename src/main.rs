@@ -98,14 +98,19 @@ fn with_threads(
     threads: Option<usize>,
     f: impl FnOnce() -> Result<(), String> + Send,
 ) -> Result<(), String> {
-    let mut pool = rayon::ThreadPoolBuilder::new();
+    // The main thread's usual stack, 8 MiB, for the scene parsing and
+    // stepping that now run on a worker (rayon's default is 2 MiB).
+    let mut pool = rayon::ThreadPoolBuilder::new().stack_size(8 << 20);
     match threads {
         None => {}
         Some(0) => return Err("--threads must be at least 1".into()),
         Some(n) => pool = pool.num_threads(n),
     }
     pool.build()
-        .map_err(|e| format!("cannot start the threads: {e}"))?
+        .map_err(|e| match threads {
+            Some(n) => format!("cannot start {n} threads: {e}"),
+            None => format!("cannot start the threads: {e}"),
+        })?
         .install(f)
 }
 

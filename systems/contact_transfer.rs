@@ -109,7 +109,8 @@ fn add_with_hat_functions(grid: &Grid, layer: &mut GridLayer, at: DVec2, force: 
     ];
     for (di, dj, w) in weights {
         // The cell is within the active nodes of a point inside the grid;
-        // a point that has left the grid (reported by P2G) may miss them.
+        // a point that has left the grid (reported by P2G) may miss them,
+        // and its force is then dropped.
         if let Some(node) = layer.node_mut([i + di, j + dj]) {
             node.external_force += w * force;
         }

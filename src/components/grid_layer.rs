@@ -121,6 +121,14 @@ impl NodeRect {
         }
     }
 
+    /// The nodes in both (empty if they do not meet).
+    pub fn intersection(self, other: Self) -> Self {
+        Self {
+            start: [0, 1].map(|d| self.start[d].max(other.start[d])),
+            end: [0, 1].map(|d| self.end[d].min(other.end[d])),
+        }
+    }
+
     /// The rectangle widened by `margin[d]` nodes on both sides along each
     /// direction d, clipped to a grid of `nodes` nodes.
     pub fn grown(self, margin: [usize; 2], nodes: [usize; 2]) -> Self {
@@ -166,8 +174,8 @@ impl NodeRect {
             .map(move |(k, row)| (first + k, &mut row[columns.clone()]))
     }
 
-    /// The rectangle's part of grid row `j` of `values`, a row-major field
-    /// stored over `storage` (which must cover the rectangle).
+    /// The rectangle's part of grid row `j` (one of its rows) of `values`, a
+    /// row-major field stored over `storage` (which must cover the rectangle).
     pub fn row<T>(self, storage: Self, values: &[T], j: usize) -> &[T] {
         if self.is_empty() {
             return &[];
@@ -250,9 +258,12 @@ impl GridLayer {
         self.active
     }
 
-    /// Node (`i`, `j`) to write; `None` if it is not stored (then it holds
-    /// zero and must stay so).
+    /// Active node (`i`, `j`) to write; `None` if it is not active (then it
+    /// holds zero and must stay so).
     pub fn node_mut(&mut self, at: [usize; 2]) -> Option<&mut GridNode> {
+        if !self.active.contains(at) {
+            return None;
+        }
         self.window.index_of(at).map(|k| &mut self.nodes[k])
     }
 
@@ -263,12 +274,16 @@ impl GridLayer {
         self.expand(rect);
     }
 
-    /// Adds `rect` to the active nodes, keeping every value. When the
-    /// window does not cover them, it moves to cover them with a margin of
-    /// [`WINDOW_MARGIN_NODES`] or a quarter of their size, whichever is
-    /// larger (the only allocation of a step, and a rare one).
+    /// Adds `rect` (clipped to the grid) to the active nodes, keeping every
+    /// value. When the window does not cover them, it moves to cover them
+    /// with a margin of [`WINDOW_MARGIN_NODES`] or a quarter of their size,
+    /// whichever is larger: an allocation, made only when a body leaves its
+    /// window. A window that still covers the active nodes is kept, however
+    /// much larger (e.g. the whole grid after a point has left it).
     pub fn expand(&mut self, rect: NodeRect) {
-        let active = self.active.union(rect);
+        let active = self
+            .active
+            .union(rect.intersection(NodeRect::whole(self.grid_nodes)));
         if !self.window.covers(active) {
             let margin = [0, 1].map(|d| {
                 let size = active.end[d] - active.start[d];
@@ -354,9 +369,17 @@ mod tests {
         assert_eq!(layer.node_mut([12, 11]).unwrap().mass, 3.0);
         let total: Real = layer.nodes().iter().map(|n| n.mass).sum();
         assert_eq!(total, 3.0);
-        // A reset zeroes the active nodes.
+        // A reset zeroes the active nodes; nodes outside them, stored or
+        // not, cannot be written.
         layer.reset(rect(90, 40));
         assert!(layer.nodes().iter().all(|n| n.mass == 0.0));
         assert_eq!(layer.node_mut([0, 0]), None);
+        assert!(layer.window().contains([88, 40]));
+        assert_eq!(layer.node_mut([88, 40]), None);
+        // Rectangles are clipped to the grid.
+        assert_eq!(layer.active().end, [95, 44]);
+        layer.reset(rect(98, 48));
+        assert_eq!(layer.active().end, [100, 50]);
+        assert!(layer.window().covers(layer.active()));
     }
 }
