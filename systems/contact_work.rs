@@ -7,11 +7,11 @@ use crate::resources::{BodyContacts, ContactWork};
 use bevy_ecs::prelude::*;
 
 /// Adds this step's work of the contacts' tangential forces on the relative
-/// motion of what they join to `ContactWork`: for a point–block contact, the tangential force on the point
-/// times the point's displacement over the step less that of the block's
-/// surface point it touched; for a point–point contact, the tangential force
-/// on p times the change of x_p − x_q. Run after the points and the blocks
-/// have moved. Blocks in scene order, contacts in their stored order, body
+/// motion of what they join to `ContactWork`: for a point–block contact,
+/// the tangential force on the point times the point's displacement over
+/// the step less that of the block's surface point it touched; for a
+/// point–point contact, the tangential force on p times the change of
+/// x_p − x_q. Run after the points and the blocks have moved. Blocks in scene order, contacts in their stored order, body
 /// contacts after them: one fixed order of summation.
 ///
 /// Only the tangential part is taken: the normal spring k_n δ is a potential

@@ -142,6 +142,17 @@ impl Shape {
         }
     }
 
+    /// The box the body's material occupies: the outline's bounds, or for a
+    /// point list the box around its points' domains
+    /// ([`super::point_file::domain_bounds`], `spacing` h / n for points
+    /// without a volume).
+    pub fn extent(&self, spacing: Real) -> (DVec2, DVec2) {
+        match self {
+            Self::Points { points, .. } => super::point_file::domain_bounds(points, spacing),
+            _ => self.bounds(),
+        }
+    }
+
     /// Whether `p` is inside (boundary included); for a point list, whether
     /// `p` is one of its points.
     pub fn contains(&self, p: DVec2) -> bool {

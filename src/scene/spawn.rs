@@ -1,8 +1,6 @@
 //! Turning a validated scene into a bevy `World`.
 
-use super::{
-    InitialStress, InitialVelocity, Scene, SceneError, Shape, SourceLocation, VelocityField,
-};
+use super::{InitialStress, InitialVelocity, Scene, SceneError, SourceLocation, VelocityField};
 use crate::components::{
     BodyIndex, BodyName, GridLayer, Material, MaterialPoints, NewPoint, RegionConstraint,
     RegionConstraints, StepTravel, TransferScratch,
@@ -220,10 +218,7 @@ fn fill_body(
         .shape
         .points(scene.grid.origin, h, spec.points_per_cell);
     // The body's top: the outline's, or a point list's highest domain edge.
-    let top = match spec.shape {
-        Shape::Points { .. } => super::point_file::domain_bounds(&listed, spacing).1.y,
-        _ => spec.shape.bounds().1.y,
-    };
+    let top = spec.shape.extent(spacing).1.y;
     let mut points = MaterialPoints::default();
     for point in &listed {
         let position = point.position;

@@ -1,6 +1,5 @@
 //! Consistency checks of a whole scene: ranges, names and geometry.
 
-use super::point_file::domain_bounds;
 use super::{
     InitialStress, InitialVelocity, MotionSpec, Scene, SceneError, Shape, SourceLocation,
     VelocityField, rules,
@@ -165,26 +164,23 @@ impl Scene {
             // A listed point's whole domain must be inside (a lattice's
             // points are inside their outline by construction), and no
             // larger than a cell: uGIMP's three-node stencil needs l ≤ h / 2.
-            let (lo, hi) = match &b.shape {
-                Shape::Points { file, .. } => {
-                    let cell = grid.cell_size * grid.cell_size;
-                    if let Some((p, volume)) = points
-                        .iter()
-                        .map(|p| (p, p.domain(spacing).0))
-                        .find(|&(_, volume)| volume > cell)
-                    {
-                        return Err(fail(
-                            "shape",
-                            format!(
-                                "body '{}': the point at {} in '{file}' has volume {volume}, more than a cell ({cell}): its domain would reach beyond the nodes next to it",
-                                b.name, p.position,
-                            ),
-                        ));
-                    }
-                    domain_bounds(&points, spacing)
+            if let Shape::Points { file, .. } = &b.shape {
+                let cell = grid.cell_size * grid.cell_size;
+                if let Some((p, volume)) = points
+                    .iter()
+                    .map(|p| (p, p.domain(spacing).0))
+                    .find(|&(_, volume)| volume > cell)
+                {
+                    return Err(fail(
+                        "shape",
+                        format!(
+                            "body '{}': the point at {} in '{file}' has volume {volume}, more than a cell ({cell}): its domain would reach beyond the nodes next to it",
+                            b.name, p.position,
+                        ),
+                    ));
                 }
-                _ => b.shape.bounds(),
-            };
+            }
+            let (lo, hi) = b.shape.extent(spacing);
             if lo.cmplt(grid_min + margin).any() || hi.cmpgt(grid_max - margin).any() {
                 return Err(fail(
                     "shape",
