@@ -228,34 +228,62 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
 }
 
 /// The outermost points of a body on `side`, with the width of surface
-/// each carries: the highest (lowest) point of every column of the
-/// initial point lattice for `Top` (`Bottom`), the rightmost (leftmost) of
-/// every row for `Right` (`Left`), columns and rows in order.
+/// each carries, in point order.
+///
+/// The side is cut into strips as wide as the body's narrowest point
+/// domain, aligned with the grid's origin: columns for `Top` and `Bottom`,
+/// rows for `Left` and `Right`. Each strip goes to the outermost point
+/// (highest for `Top`, lowest for `Bottom`, rightmost for `Right`,
+/// leftmost for `Left`, by initial position) whose domain covers the
+/// strip's centre, and a point carries the width of the strips it gets.
+/// A body filled on the lattice has one strip per lattice column (row),
+/// each covered by that column's points alone; a point list's wider
+/// domains cover several strips, so every strip of its side is loaded
+/// once whatever the points' sizes.
 pub fn side_points(points: &MaterialPoints, origin: DVec2, side: Side) -> Vec<(u32, Real)> {
-    let mut outermost: BTreeMap<i64, (u32, Real, Real)> = BTreeMap::new();
+    let across_side = |half: DVec2| match side {
+        Side::Top | Side::Bottom => half.x,
+        Side::Left | Side::Right => half.y,
+    };
+    let strip = points
+        .half_size
+        .iter()
+        .map(|h| 2.0 * across_side(*h))
+        .fold(Real::INFINITY, Real::min);
+    let mut outermost: BTreeMap<i64, (u32, Real)> = BTreeMap::new();
     for (p, (x, half)) in points
         .initial_position
         .iter()
         .zip(&points.half_size)
         .enumerate()
     {
-        let (along, across, width) = match side {
-            Side::Top | Side::Bottom => (x.x - origin.x, x.y, 2.0 * half.x),
-            Side::Left | Side::Right => (x.y - origin.y, x.x, 2.0 * half.y),
+        let (along, across) = match side {
+            Side::Top | Side::Bottom => (x.x - origin.x, x.y),
+            Side::Left | Side::Right => (x.y - origin.y, x.x),
         };
-        let key = (along / width).floor() as i64;
         let outward = match side {
             Side::Top | Side::Right => across,
             Side::Bottom | Side::Left => -across,
         };
-        let entry = outermost.entry(key).or_insert((p as u32, outward, width));
-        if outward > entry.1 {
-            *entry = (p as u32, outward, width);
+        let half = across_side(*half);
+        // Strip k's centre is at (k + 1/2) strip: the strips whose centre
+        // lies inside [along - half, along + half].
+        let first = ((along - half) / strip - 0.5).ceil() as i64;
+        let last = ((along + half) / strip - 0.5).floor() as i64;
+        for k in first..=last {
+            let entry = outermost.entry(k).or_insert((p as u32, outward));
+            if outward > entry.1 {
+                *entry = (p as u32, outward);
+            }
         }
     }
-    outermost
-        .into_values()
-        .map(|(p, _, width)| (p, width))
+    let mut strips_of: BTreeMap<u32, u32> = BTreeMap::new();
+    for (p, _) in outermost.into_values() {
+        *strips_of.entry(p).or_insert(0) += 1;
+    }
+    strips_of
+        .into_iter()
+        .map(|(p, count)| (p, Real::from(count) * strip))
         .collect()
 }
 

@@ -5,7 +5,8 @@
 mod common;
 
 use mpdem::prelude::*;
-use mpdem::scene::{InitialStress, ListedPoint, Shape};
+use mpdem::scene::{InitialStress, ListedPoint, Shape, Side};
+use mpdem::systems::side_points;
 use std::path::{Path, PathBuf};
 
 /// The wave scene shortened to 0.05 s (500 steps), its bar read from
@@ -133,15 +134,91 @@ fn a_listed_bodys_geostatic_stress_starts_at_its_highest_domain_edge() {
     assert!(lattice.iter().all(|s| s.yy < 0.0));
 }
 
+/// The listed geostatic column with its two top rows of points (0.1 m
+/// apart) replaced by one row of points twice as wide, 0.2 m.
+fn listed_column_with_a_coarse_top() -> Scene {
+    let mut scene = listed_geostatic_column();
+    let Shape::Points { points, .. } = &mut scene.bodies[0].shape else {
+        unreachable!()
+    };
+    points.retain(|p| p.position.y < 3.8);
+    points.extend((0..5).map(|i| ListedPoint {
+        position: DVec2::new(0.1 + 0.2 * Real::from(i), 3.9),
+        volume: Some(0.2 * 0.2),
+    }));
+    scene
+}
+
 #[test]
-fn a_listed_body_refuses_tractions_and_oversized_or_outlying_domains() {
-    // Surcharges find a side's points per lattice column.
-    let message = common::refusal(&listed_geostatic_column());
+fn a_listed_bodys_sides_are_found_whatever_its_points_sizes() {
+    let mut sim = Simulation::from_scene(&listed_column_with_a_coarse_top())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let origin = sim.world().resource::<Grid>().origin;
+    let points = sim.points_of("soil").unwrap().clone();
+    let side = |side| -> Vec<(DVec2, Real)> {
+        side_points(&points, origin, side)
+            .into_iter()
+            .map(|(p, width)| (points.initial_position[p as usize], width))
+            .collect()
+    };
+    // The top is the five wide points, each carrying its own 0.2 m.
+    let top = side(Side::Top);
+    assert_eq!(top.len(), 5, "{top:?}");
+    for (k, (x, width)) in top.iter().enumerate() {
+        assert!(
+            (x.x - (0.1 + 0.2 * k as Real)).abs() < 1e-12 && x.y == 3.9,
+            "{x}"
+        );
+        assert!((width - 0.2).abs() < 1e-12, "{width}");
+    }
+    // The bottom is the ten narrow points of the lowest row, 0.1 m each;
+    // the right side is every row's last point: 38 rows of 0.1 m, then
+    // the wide top point's 0.2 m, so the whole 4 m height once.
+    let bottom = side(Side::Bottom);
+    assert_eq!(bottom.len(), 10);
     assert!(
-        message
-            .contains("body 'soil' is a point list: tractions need a body filled on the lattice"),
-        "{message}"
+        bottom
+            .iter()
+            .all(|(x, w)| (x.y - 0.05).abs() < 1e-12 && (w - 0.1).abs() < 1e-12)
     );
+    let right = side(Side::Right);
+    let height: Real = right.iter().map(|(_, w)| w).sum();
+    assert_eq!(right.len(), 39, "{right:?}");
+    assert!((height - 4.0).abs() < 1e-9, "{height}");
+}
+
+#[test]
+fn a_listed_body_with_a_coarse_top_carries_the_surcharge_to_its_base() {
+    let mut sim = Simulation::from_scene(&listed_column_with_a_coarse_top())
+        .unwrap_or_else(|e| panic!("{e}"));
+    sim.run().unwrap_or_else(|e| panic!("{e}"));
+    let points = sim.points_of("soil").unwrap();
+    let lowest = points
+        .position
+        .iter()
+        .map(|x| x.y)
+        .fold(Real::INFINITY, Real::min);
+    let base: Vec<Real> = points
+        .position
+        .iter()
+        .zip(&points.stress)
+        .filter(|(x, _)| x.y < lowest + 1e-6)
+        .map(|(_, s)| s.yy)
+        .collect();
+    let base = base.iter().sum::<Real>() / base.len() as Real;
+    // As for the lattice column (tests/stages.rs): the lowest points carry
+    // the stress of the bottom cell's centre, ρ g (H − h/2), plus the
+    // 150 kPa surcharge; the geostatic tolerance, 3%.
+    let expected = -1620.0 * 9.81 * (4.0 - 0.1) - 150e3;
+    println!(
+        "listed column, coarse top: base σ_v {base:.1} Pa vs {expected:.1} Pa ({:+.3}%)",
+        100.0 * (base / expected - 1.0)
+    );
+    assert!((base / expected - 1.0).abs() <= 0.03);
+}
+
+#[test]
+fn a_listed_body_refuses_oversized_or_outlying_domains() {
     let mut scene = listed_geostatic_column();
     scene.stages.clear();
     let Shape::Points { points, .. } = &mut scene.bodies[0].shape else {

@@ -113,7 +113,8 @@ pub struct SurfaceTraction {
 }
 
 /// A side of a body: the points that are outermost in that direction
-/// (per column of points for `Top`/`Bottom`, per row for `Left`/`Right`).
+/// (per column of points for `Top`/`Bottom`, per row for `Left`/`Right`;
+/// see `systems::side_points`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
 pub enum Side {
     /// The highest point of each column.

@@ -547,22 +547,11 @@ impl Scene {
                 }
             }
             for traction in &stage.tractions {
-                let Some(body) = self.bodies.iter().find(|b| b.name == traction.body) else {
+                if !self.bodies.iter().any(|b| b.name == traction.body) {
                     return Err(fail(
                         "tractions",
                         format!(
                             "unknown body '{}'; expected one of {body_names:?}",
-                            traction.body
-                        ),
-                    ));
-                };
-                // A side's points are found per column or row of the
-                // lattice, which a point list need not have.
-                if matches!(body.shape, Shape::Points { .. }) {
-                    return Err(fail(
-                        "tractions",
-                        format!(
-                            "body '{}' is a point list: tractions need a body filled on the lattice",
                             traction.body
                         ),
                     ));
