@@ -32,6 +32,14 @@ enum Command {
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
+        /// Write the run's state to OUT/checkpoint.bin every this many
+        /// seconds of simulated time, and at the end.
+        #[arg(long, value_name = "SECONDS")]
+        checkpoint_every: Option<f64>,
+        /// Carry on from OUT/checkpoint.bin, written by a run of the same
+        /// scene (its time.end may have grown since), into the same folder.
+        #[arg(long)]
+        resume: bool,
     },
     /// Validate a scene without running it.
     Check {
@@ -68,7 +76,15 @@ fn main() -> ExitCode {
             out,
             threads,
             quiet,
-        } => with_threads(threads, || run(&scene, out.as_deref(), quiet)),
+            checkpoint_every,
+            resume,
+        } => with_threads(threads, || {
+            let checkpoints = Checkpoints {
+                every: checkpoint_every,
+                resume,
+            };
+            run(&scene, out.as_deref(), quiet, checkpoints)
+        }),
         Command::Check { scene } => check(&scene),
         Command::Bench {
             points,
@@ -131,19 +147,62 @@ fn check(path: &Path) -> Result<(), String> {
     Ok(())
 }
 
-fn run(path: &Path, out: Option<&Path>, quiet: bool) -> Result<(), String> {
+/// What `mpdem run` does with checkpoints.
+struct Checkpoints {
+    /// Simulated time between two checkpoints (s), if any are written.
+    every: Option<f64>,
+    /// Start from the output folder's checkpoint.
+    resume: bool,
+}
+
+fn run(
+    path: &Path,
+    out: Option<&Path>,
+    quiet: bool,
+    checkpoints: Checkpoints,
+) -> Result<(), String> {
+    if checkpoints
+        .every
+        .is_some_and(|t| !(t.is_finite() && t > 0.0))
+    {
+        return Err("--checkpoint-every must be a positive time in seconds".into());
+    }
     let scene = Scene::load(path).map_err(|e| e.to_string())?;
-    let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
+    let dir = out.map_or_else(
+        || Path::new("out").join(scene.display_name()),
+        Path::to_path_buf,
+    );
+    let checkpoint = dir.join("checkpoint.bin");
+    let mut sim = if checkpoints.resume {
+        Simulation::resume(&scene, &checkpoint).map_err(|e| e.to_string())?
+    } else {
+        Simulation::from_scene(&scene).map_err(|e| e.to_string())?
+    };
     for w in sim.warnings() {
         eprintln!("warning: {w}");
     }
-    let dir = out.map_or_else(|| Path::new("out").join(sim.name()), Path::to_path_buf);
     let clock = sim.clock();
     let frame_interval = scene.output.frame_interval_or_default(clock.end);
-    let mut output = RunOutput::create(&dir, frame_interval, &scene.output.curves, &mut sim)
-        .map_err(|e| format!("{}: cannot write output: {e}", dir.display()))?;
+    let curves = &scene.output.curves;
+    let mut output = if checkpoints.resume {
+        eprintln!(
+            "resuming at step {} (t = {:.6e} s) from {}",
+            clock.step,
+            clock.time,
+            checkpoint.display()
+        );
+        RunOutput::resume(&dir, frame_interval, curves, &sim)
+    } else {
+        RunOutput::create(&dir, frame_interval, curves, &mut sim)
+    }
+    .map_err(|e| format!("{}: cannot write output: {e}", dir.display()))?;
+    let checkpoint_steps = checkpoints
+        .every
+        .map(|t| ((t / clock.dt).round() as u64).max(1));
     let total = clock.total_steps();
     let progress = progress_bar(total, quiet);
+    progress.set_position(clock.step);
+    progress.reset_eta();
     let started = std::time::Instant::now();
     let mut failure = None;
     while !sim.clock().finished() {
@@ -155,6 +214,10 @@ fn run(path: &Path, out: Option<&Path>, quiet: bool) -> Result<(), String> {
             .after_step(&mut sim)
             .map_err(|e| format!("{}: cannot write output: {e}", dir.display()))?;
         let now = sim.clock();
+        if checkpoint_steps.is_some_and(|n| now.step.is_multiple_of(n) || now.finished()) {
+            sim.write_checkpoint(&checkpoint)
+                .map_err(|e| format!("cannot write the checkpoint: {e}"))?;
+        }
         if now.step % 64 == 0 || now.finished() {
             progress.set_position(now.step);
             progress.set_message(format!("t = {:.4e} s", now.time));

@@ -1,7 +1,10 @@
 //! The library entry point: a world and its step schedule.
 
 use crate::components::{
-    BlockId, BodyIndex, BodyName, MaterialPoints, Pose, RigidVelocity, sort_into_scene_order,
+    BlockId, BodyName, MaterialPoints, Pose, RigidVelocity, bodies_in_scene_order,
+};
+use crate::io::checkpoint::{
+    CheckpointError, restore_checkpoint, scene_fingerprint, write_checkpoint,
 };
 use crate::io::state_hash::StateHasher;
 use crate::math::Real;
@@ -39,6 +42,8 @@ pub struct Simulation {
     schedule: Schedule,
     name: String,
     warnings: Vec<String>,
+    /// The scene's fingerprint, which a checkpoint must match.
+    fingerprint: u64,
 }
 
 impl Simulation {
@@ -57,7 +62,25 @@ impl Simulation {
             schedule,
             name: scene.display_name().to_owned(),
             warnings,
+            fingerprint: scene_fingerprint(scene),
         })
+    }
+
+    /// Builds the scene, then puts into it the state of the checkpoint at
+    /// `path`, written by [`Simulation::write_checkpoint`] in a run of the
+    /// same scene (whose `time.end`, name and output may have changed since):
+    /// stepping on gives bit-identically what the run that wrote it would
+    /// have given. A checkpoint of another scene is refused.
+    pub fn resume(scene: &Scene, path: &Path) -> Result<Self, CheckpointError> {
+        let mut sim = Self::from_scene(scene)?;
+        restore_checkpoint(&mut sim.world, scene, sim.fingerprint, path)?;
+        Ok(sim)
+    }
+
+    /// Writes the state of the run to `path` (see [`crate::io::checkpoint`]),
+    /// replacing the file only once the new one is whole.
+    pub fn write_checkpoint(&mut self, path: &Path) -> Result<(), CheckpointError> {
+        write_checkpoint(&mut self.world, self.fingerprint, path)
     }
 
     /// The scene's name.
@@ -136,18 +159,11 @@ impl Simulation {
 
     /// Bodies in scene order with their names.
     pub fn bodies(&mut self) -> Vec<(Entity, String)> {
-        let mut order = Vec::new();
-        let mut query = self.world.query::<(Entity, &BodyIndex)>();
-        sort_into_scene_order(&mut order, query.iter(&self.world).map(|(e, i)| (*i, e)));
-        order
+        bodies_in_scene_order(&mut self.world)
             .into_iter()
-            .map(|(_, e)| {
-                (
-                    e,
-                    self.world
-                        .get::<BodyName>(e)
-                        .map_or_else(String::new, |n| n.0.clone()),
-                )
+            .map(|e| {
+                let name = self.world.get::<BodyName>(e);
+                (e, name.map_or_else(String::new, |n| n.0.clone()))
             })
             .collect()
     }

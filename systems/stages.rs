@@ -1,9 +1,7 @@
 //! The scene's stages: entering one (its changes to the setup) and ending
 //! it (after its duration, or once the model has settled).
 
-use crate::components::{
-    BlockId, BodyIndex, BodyName, MaterialPoints, RigidVelocity, sort_into_scene_order,
-};
+use crate::components::{BlockId, BodyName, MaterialPoints, RigidVelocity, bodies_in_scene_order};
 use crate::math::{DVec2, Real};
 use crate::resources::{
     AppliedLoad, Clock, Gravity, Grid, Settings, StageEndReason, StageLog, StagePlan, StageRecord,
@@ -26,7 +24,7 @@ pub fn advance_stages(world: &mut World) {
     let Some(mut plan) = world.remove_resource::<StagePlan>() else {
         return;
     };
-    if !plan.finished {
+    if !plan.progress.finished {
         let reason = stage_end(world, &mut plan);
         if let Some(reason) = reason {
             finish_stage(world, &mut plan, reason);
@@ -38,10 +36,10 @@ pub fn advance_stages(world: &mut World) {
 /// Why the current stage ends after this step, if it does.
 fn stage_end(world: &mut World, plan: &mut StagePlan) -> Option<StageEndReason> {
     let clock = *world.resource::<Clock>();
-    let elapsed = clock.time - plan.started;
+    let elapsed = clock.time - plan.progress.started;
     let elapsed_enough = |t: Real| elapsed >= t - 0.5 * clock.dt;
     let bodies = &plan.bodies;
-    let end = plan.scene.stages[plan.current].end.clone();
+    let end = plan.scene.stages[plan.progress.current].end.clone();
     let settled = match end {
         StageEnd::Duration(d) => {
             if elapsed_enough(d) {
@@ -61,8 +59,8 @@ fn stage_end(world: &mut World, plan: &mut StagePlan) -> Option<StageEndReason> 
                         .sum::<Real>()
                 })
                 .sum();
-            plan.peak_kinetic = plan.peak_kinetic.max(kinetic);
-            kinetic <= ratio * plan.peak_kinetic
+            plan.progress.peak_kinetic = plan.progress.peak_kinetic.max(kinetic);
+            kinetic <= ratio * plan.progress.peak_kinetic
         }
         StageEnd::StressChange { below, .. } => {
             let mut largest: Real = 0.0;
@@ -70,7 +68,7 @@ fn stage_end(world: &mut World, plan: &mut StagePlan) -> Option<StageEndReason> 
                 let Some(points) = world.get::<MaterialPoints>(*e) else {
                     continue;
                 };
-                let previous = &mut plan.previous_stress[k];
+                let previous = &mut plan.progress.previous_stress[k];
                 for (old, new) in previous.iter_mut().zip(&points.stress) {
                     let (new_c, old_c) = (new.to_array(), old.to_array());
                     largest = new_c
@@ -97,14 +95,14 @@ fn stage_end(world: &mut World, plan: &mut StagePlan) -> Option<StageEndReason> 
 /// Records the end of the current stage and enters the next, or ends the run.
 fn finish_stage(world: &mut World, plan: &mut StagePlan, reason: StageEndReason) {
     let clock = *world.resource::<Clock>();
-    let stage = &plan.scene.stages[plan.current];
+    let stage = &plan.scene.stages[plan.progress.current];
     let mut log = world.resource_mut::<StageLog>();
     log.records.push(StageRecord {
-        index: plan.current,
+        index: plan.progress.current,
         name: stage.name.clone(),
-        start: plan.started,
+        start: plan.progress.started,
         end: clock.time,
-        steps: ((clock.time - plan.started) / clock.dt).round() as u64,
+        steps: ((clock.time - plan.progress.started) / clock.dt).round() as u64,
         reason,
     });
     match reason {
@@ -120,12 +118,12 @@ fn finish_stage(world: &mut World, plan: &mut StagePlan, reason: StageEndReason)
         )),
         StageEndReason::Duration | StageEndReason::Condition => {}
     }
-    let next = plan.current + 1;
+    let next = plan.progress.current + 1;
     if reason != StageEndReason::SceneEnd && next < plan.scene.stages.len() {
         let warnings = enter_stage(world, plan, next);
         world.resource_mut::<StageLog>().warnings.extend(warnings);
     } else {
-        plan.finished = true;
+        plan.progress.finished = true;
         world.resource_mut::<Clock>().end = clock.time;
     }
 }
@@ -158,7 +156,7 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
             world.despawn(entity);
         }
     }
-    let bodies = bodies_in_order(world);
+    let bodies = bodies_in_scene_order(world);
     for name in &spec.add_blocks {
         if let Some(k) = plan.scene.blocks.iter().position(|b| &b.name == name) {
             match spawn_block(&plan.scene, k, world, &bodies) {
@@ -187,11 +185,12 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
             continue;
         };
         if let Some(k) = plan
+            .progress
             .loads
             .iter()
             .position(|l| l.body == body && l.side == traction.side)
         {
-            for (p, f) in plan.loads.remove(k).forces {
+            for (p, f) in plan.progress.loads.remove(k).forces {
                 points.external_force[p as usize] -= f;
             }
         }
@@ -202,17 +201,17 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
         for &(p, f) in &forces {
             points.external_force[p as usize] += f;
         }
-        plan.loads.push(AppliedLoad {
+        plan.progress.loads.push(AppliedLoad {
             body,
             side: traction.side,
             forces,
         });
     }
     let time = world.resource::<Clock>().time;
-    plan.current = index;
-    plan.started = time;
-    plan.peak_kinetic = 0.0;
-    plan.previous_stress = match spec.end {
+    plan.progress.current = index;
+    plan.progress.started = time;
+    plan.progress.peak_kinetic = 0.0;
+    plan.progress.previous_stress = match spec.end {
         StageEnd::StressChange { .. } => bodies
             .iter()
             .map(|e| {
@@ -285,13 +284,6 @@ pub fn side_points(points: &MaterialPoints, origin: DVec2, side: Side) -> Vec<(u
         .into_iter()
         .map(|(p, count)| (p, Real::from(count) * strip))
         .collect()
-}
-
-fn bodies_in_order(world: &mut World) -> Vec<Entity> {
-    let mut order = Vec::new();
-    let mut query = world.query::<(Entity, &BodyIndex)>();
-    sort_into_scene_order(&mut order, query.iter(world).map(|(e, i)| (*i, e)));
-    order.into_iter().map(|(_, e)| e).collect()
 }
 
 fn block_named(world: &mut World, name: &str) -> Option<Entity> {

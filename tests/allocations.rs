@@ -102,7 +102,7 @@ fn every_scene_steps_without_allocating() {
     pile.grid.cells = (50, 35);
     pile.time.dt = 2e-4;
     let mut driven = Simulation::from_scene(&pile).unwrap_or_else(|e| panic!("{e}"));
-    while driven.world().resource::<StagePlan>().current < 2 {
+    while driven.world().resource::<StagePlan>().progress.current < 2 {
         driven.step().unwrap_or_else(|e| panic!("{e}"));
     }
     let mut report = Vec::new();

@@ -110,3 +110,66 @@ fn a_blow_up_stops_the_run_and_writes_no_broken_state() {
     }
     std::fs::remove_dir_all(&base).ok();
 }
+
+/// The state hash `mpdem run` prints.
+fn printed_hash(output: &std::process::Output) -> String {
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let at = stdout.find("state hash ").expect("a state hash") + "state hash ".len();
+    stdout[at..at + 16].to_owned()
+}
+
+#[test]
+fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outputs() {
+    let (base, short) = common::edited_wave_scene("resume-short", "end: 1.0", "end: 0.05");
+    let (other, long) = common::edited_wave_scene("resume-long", "end: 1.0", "end: 0.08");
+    let (resumed, straight) = (base.join("out"), other.join("out"));
+    let run = |scene: &std::path::Path, out: &std::path::Path, extra: &[&str]| {
+        let mut args = vec![
+            "run",
+            scene.to_str().unwrap(),
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        mpdem(&args)
+    };
+    printed_hash(&run(&short, &resumed, &["--checkpoint-every", "0.02"]));
+    assert!(resumed.join("checkpoint.bin").is_file());
+    // The folder then holds frames past the checkpoint (0.05 s), as after a
+    // run stopped later than its last checkpoint: the resumed run drops
+    // them from the collection and writes them again.
+    printed_hash(&run(&long, &resumed, &[]));
+    let resumed_hash = printed_hash(&run(&long, &resumed, &["--resume"]));
+    let straight_hash = printed_hash(&run(&long, &straight, &[]));
+    assert_eq!(resumed_hash, straight_hash);
+    for file in [
+        "probes.csv",
+        "energy.csv",
+        "points.pvd",
+        "vtk/points_00003.vtu",
+        "vtk/points_00008.vtu",
+    ] {
+        let read = |dir: &std::path::Path| std::fs::read(dir.join(file)).expect(file);
+        assert!(read(&resumed) == read(&straight), "{file} differs");
+    }
+    // Refusals: no checkpoint in the folder, a checkpoint interval of zero.
+    let empty = base.join("empty");
+    let result = run(&long, &empty, &["--resume"]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        !result.status.success() && stderr.contains("checkpoint.bin"),
+        "{stderr}"
+    );
+    let result = run(&long, &empty, &["--checkpoint-every", "0"]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        stderr.contains("--checkpoint-every must be a positive time"),
+        "{stderr}"
+    );
+}

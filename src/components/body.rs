@@ -2,7 +2,7 @@
 
 use crate::materials::MaterialModel;
 use crate::math::{DVec2, Real};
-use bevy_ecs::prelude::{Component, Entity};
+use bevy_ecs::prelude::{Component, Entity, World};
 use serde::{Deserialize, Serialize};
 
 /// The body's name from the scene (unique).
@@ -25,6 +25,14 @@ pub fn sort_into_scene_order<K: Ord>(
     order.clear();
     order.extend(entities);
     order.sort_unstable();
+}
+
+/// Every body entity, in scene order.
+pub fn bodies_in_scene_order(world: &mut World) -> Vec<Entity> {
+    let mut order = Vec::new();
+    let mut query = world.query::<(Entity, &BodyIndex)>();
+    sort_into_scene_order(&mut order, query.iter(world).map(|(e, i)| (*i, e)));
+    order.into_iter().map(|(_, e)| e).collect()
 }
 
 /// The body's material: density and constitutive model.

@@ -5,6 +5,7 @@ use crate::math::{DMat2, DVec2, Real, SymTensor};
 use crate::transfer::CHUNK_POINTS;
 use bevy_ecs::prelude::Component;
 use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 
 /// The initial state of one point, used to fill the columns.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,7 +57,7 @@ pub struct StepTravel(pub Real);
 /// Every point of one body, one column per field. All columns have the same
 /// length; index p is the same point in every column. Points keep their
 /// order for the whole run, so an index identifies a point.
-#[derive(Component, Clone, Debug, Default, PartialEq)]
+#[derive(Component, Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct MaterialPoints {
     /// Current position x_p.
     pub position: Vec<DVec2>,

@@ -10,7 +10,7 @@ mod transfer_scratch;
 
 pub use body::{
     BodyAcceleration, BodyIndex, BodyName, Material, RegionConstraint, RegionConstraints,
-    sort_into_scene_order,
+    bodies_in_scene_order, sort_into_scene_order,
 };
 pub use grid_layer::{Fix, GridLayer, GridNode, NodeConstraint, NodeRect, WINDOW_MARGIN_NODES};
 pub use material_points::{MaterialPoints, NewPoint, PointEnergies, StepTravel};

@@ -35,7 +35,7 @@ impl BlockOutline {
 }
 
 /// Where the block's frame is: origin (m) and rotation (rad, counter-clockwise).
-#[derive(Component, Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Pose {
     /// Position of the frame origin.
     pub origin: DVec2,
@@ -76,7 +76,7 @@ pub struct RigidVelocity {
 }
 
 /// How the block moves.
-#[derive(Component, Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Component, Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum RigidMotion {
     /// Never moves (ground, walls).
     Fixed,
@@ -111,7 +111,7 @@ pub struct BlockContactLaw(pub ContactLaw);
 /// The points near the block: candidate contacts, rebuilt every
 /// `iter_period` steps (Algorithm 1, l. 5–8) or earlier when a point could
 /// have travelled further than the margin since the last rebuild.
-#[derive(Component, Clone, Debug, Default, PartialEq)]
+#[derive(Component, Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct NeighbourList {
     /// (body entity, point index) pairs, in scene order of bodies then point order.
     pub points: Vec<(Entity, u32)>,
@@ -124,7 +124,7 @@ pub struct NeighbourList {
 }
 
 /// A contact of this step between the block and a point, with its force.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PointContact {
     /// The body.
     pub body: Entity,
@@ -150,7 +150,7 @@ pub struct PointContact {
 /// This step's contacts of the block, in neighbour-list order, and last
 /// step's (for the tangential history, kept per (block, point) pair while in
 /// contact and dropped on separation).
-#[derive(Component, Clone, Debug, Default, PartialEq)]
+#[derive(Component, Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct BlockContacts {
     /// Contacts of this step.
     pub current: Vec<PointContact>,
@@ -161,12 +161,12 @@ pub struct BlockContacts {
 /// Force the points exert on each part of the block this step (one entry
 /// for a single shape; for a compound, each contact goes to the part its
 /// contact point is nearest), e.g. a pile's cone tip apart from its shaft.
-#[derive(Component, Clone, Debug, Default, PartialEq)]
+#[derive(Component, Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct PartReactions(pub Vec<DVec2>);
 
 /// Force and torque (about the centre of mass) the points exert on the block
 /// this step, summed in contact order.
-#[derive(Component, Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Reaction {
     /// Force (N/m).
     pub force: DVec2,

@@ -1,7 +1,8 @@
 //! Everything that leaves the engine: CSV time series, VTK files for
-//! ParaView, PNG plots and snapshots, the state hash, and the run-output
-//! folder that ties them together.
+//! ParaView, PNG plots and snapshots, the state hash, checkpoints to resume
+//! a run from, and the run-output folder that ties them together.
 
+pub mod checkpoint;
 pub mod csv;
 pub mod output;
 pub mod plot;

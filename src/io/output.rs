@@ -1,9 +1,11 @@
-//! The output folder of a run: VTK frames during the run; CSV series, the
-//! ParaView collection and PNG plots at the end.
+//! The output folder of a run: VTK frames and the ParaView collections
+//! during the run; CSV series and PNG plots at the end.
 
 use super::csv;
 use super::plot::{Series, SeriesStyle, plot_points, plot_series};
-use super::vtk::{PointFrame, write_collection, write_outlines, write_point_frame};
+use super::vtk::{
+    PointFrame, read_collection, write_collection, write_outlines, write_point_frame,
+};
 use crate::components::{BlockId, BlockOutline, BodyIndex, MaterialPoints, Pose};
 use crate::math::{DVec2, Real};
 use crate::resources::{BlockLog, BodyPairLog, EnergyLog, Grid, Probes, StageLog};
@@ -69,6 +71,39 @@ impl RunOutput {
         Ok(output)
     }
 
+    /// Carries on the folder of a run that `sim` was resumed from (see
+    /// [`Simulation::resume`]): the frames its collections list up to the
+    /// checkpoint's time are kept, later ones are written again, every
+    /// `frame_interval` as for a new run. A folder without `points.pvd` is
+    /// not a run's folder: an error.
+    pub fn resume(
+        dir: &Path,
+        frame_interval: Real,
+        curves: &[CurveSpec],
+        sim: &Simulation,
+    ) -> std::io::Result<Self> {
+        let clock = sim.clock();
+        let up_to_now = |path: &Path| -> std::io::Result<Vec<(Real, String)>> {
+            let mut frames = read_collection(path)
+                .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", path.display())))?;
+            frames.retain(|(time, _)| *time <= clock.time + 0.5 * clock.dt);
+            Ok(frames)
+        };
+        let blocks = dir.join("blocks.pvd");
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            frame_every: ((frame_interval / clock.dt).round() as u64).max(1),
+            frames: up_to_now(&dir.join("points.pvd"))?,
+            block_frames: if blocks.is_file() {
+                up_to_now(&blocks)?
+            } else {
+                Vec::new()
+            },
+            buffers: FrameBuffers::default(),
+            curves: curves.to_vec(),
+        })
+    }
+
     /// The output folder.
     pub fn dir(&self) -> &Path {
         &self.dir
@@ -90,10 +125,7 @@ impl RunOutput {
         if !failed && self.frames.last().is_none_or(|(t, _)| *t != time) {
             self.write_frame(sim)?;
         }
-        write_collection(&self.dir.join("points.pvd"), &self.frames)?;
-        if !self.block_frames.is_empty() {
-            write_collection(&self.dir.join("blocks.pvd"), &self.block_frames)?;
-        }
+        self.write_collections()?;
         let body_names: Vec<String> = sim.bodies().into_iter().map(|(_, n)| n).collect();
         let world = sim.world();
         let probes = world.resource::<Probes>();
@@ -189,6 +221,16 @@ impl RunOutput {
             write_outlines(&self.dir.join("vtk").join(&name), &b.outlines)?;
             self.block_frames
                 .push((sim.clock().time, format!("vtk/{name}")));
+        }
+        // The collections list every frame so far, so a stopped run can be
+        // opened in ParaView and resumed.
+        self.write_collections()
+    }
+
+    fn write_collections(&self) -> std::io::Result<()> {
+        write_collection(&self.dir.join("points.pvd"), &self.frames)?;
+        if !self.block_frames.is_empty() {
+            write_collection(&self.dir.join("blocks.pvd"), &self.block_frames)?;
         }
         Ok(())
     }

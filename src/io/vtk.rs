@@ -133,6 +133,36 @@ pub fn write_collection(path: &Path, entries: &[(Real, String)]) -> std::io::Res
     out.flush()
 }
 
+/// Reads back a collection written by [`write_collection`]: its (time,
+/// file) entries in order. Only that writer's layout is understood (one
+/// `DataSet` element per line).
+pub fn read_collection(path: &Path) -> std::io::Result<Vec<(Real, String)>> {
+    let text = std::fs::read_to_string(path)?;
+    let bad = |line: usize| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("line {}: not a collection entry written by mpdem", line + 1),
+        )
+    };
+    let attribute = |line: &str, name: &str| -> Option<String> {
+        let start = line.find(&format!(" {name}=\""))? + name.len() + 3;
+        let length = line[start..].find('"')?;
+        Some(line[start..start + length].to_owned())
+    };
+    let mut entries = Vec::new();
+    for (k, line) in text.lines().enumerate() {
+        if !line.trim_start().starts_with("<DataSet") {
+            continue;
+        }
+        let time = attribute(line, "timestep")
+            .and_then(|t| t.parse::<Real>().ok())
+            .ok_or_else(|| bad(k))?;
+        let file = attribute(line, "file").ok_or_else(|| bad(k))?;
+        entries.push((time, unescape_xml(&file)));
+    }
+    Ok(entries)
+}
+
 /// Writes one unstructured grid piece with the given points (z = 0), cells and point data.
 fn write_unstructured_grid(
     path: &Path,
@@ -188,6 +218,14 @@ fn escape_xml(text: &str) -> String {
         }
     }
     escaped
+}
+
+fn unescape_xml(text: &str) -> String {
+    text.replace("&lt;", "<")
+        .replace("&gt;", ">")
+        .replace("&quot;", "\"")
+        .replace("&apos;", "'")
+        .replace("&amp;", "&")
 }
 
 #[cfg(test)]
@@ -352,6 +390,8 @@ mod tests {
         assert_eq!(times, vec![0.0, 0.1 + 0.2, 1.25e-7]);
         assert!(text.contains(r#"file="frames/points_0001.vtu""#));
         assert!(text.contains(r#"file="a&amp;b.vtu""#));
+        // Read back exactly: times and files.
+        assert_eq!(read_collection(&path).unwrap(), entries);
 
         let bad_path = path.with_file_name("bad.pvd");
         let _ = std::fs::remove_file(&bad_path);

@@ -4,6 +4,7 @@
 use crate::contact::ContactLaw;
 use crate::math::{DVec2, Real};
 use bevy_ecs::prelude::Resource;
+use serde::{Deserialize, Serialize};
 
 /// The law between two bodies, by body index in the scene (`a` < `b`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -18,7 +19,7 @@ pub struct BodyPairLaw {
 
 /// A contact between point `p` of body `a` and point `q` of body `b`
 /// (`a` < `b`).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BodyPairContact {
     /// Body index of the first point.
     pub a: u32,
@@ -95,7 +96,7 @@ pub fn law_between(laws: &[BodyPairLaw], i: u32, j: u32) -> Option<&ContactLaw> 
 /// of the zone they cover. The widths assume one contact zone, measured
 /// across the resultant; for bodies touching on opposite sides (a resultant
 /// near zero) they mean nothing.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct PairSummary {
     /// Resultant force on the lower-index body (N/m).
     pub force: DVec2,

@@ -2,9 +2,10 @@
 
 use crate::math::Real;
 use bevy_ecs::prelude::Resource;
+use serde::{Deserialize, Serialize};
 
 /// Step counter and simulated time. The time step is fixed for the run.
-#[derive(Resource, Clone, Copy, Debug, PartialEq)]
+#[derive(Resource, Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Clock {
     /// Number of completed steps.
     pub step: u64,

@@ -54,5 +54,5 @@ pub type BlockContactKey = (u32, u32, (u32, u32, u32));
 
 /// Tangential springs of the block–block contacts, carried from step to
 /// step: (key, force on a), sorted by key. A point that separates is dropped.
-#[derive(Resource, Clone, Debug, Default, PartialEq)]
+#[derive(Resource, Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct BlockContactHistory(pub Vec<(BlockContactKey, DVec2)>);

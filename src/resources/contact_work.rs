@@ -2,12 +2,13 @@
 
 use crate::math::Real;
 use bevy_ecs::prelude::Resource;
+use serde::{Deserialize, Serialize};
 
 /// The work of the point contacts' (point–block and point–point)
 /// tangential forces on the actual relative motion of what they join since
 /// the start of the run (J/m). What it took and their springs do not hold
 /// was dissipated (see [`crate::resources::EnergySample::dissipated`]).
-#[derive(Resource, Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct ContactWork {
     /// Σ over steps and contacts of f_t · Δ(x_p − x_other), with Δ the
     /// change over the step of the point's position relative to the other

@@ -27,4 +27,4 @@ pub use records::{
 };
 pub use settings::{Gravity, PositionUpdate, Settings, UpdateScheme};
 pub use shared_layers::SharedLayers;
-pub use stages::{AppliedLoad, StageEndReason, StageLog, StagePlan, StageRecord};
+pub use stages::{AppliedLoad, StageEndReason, StageLog, StagePlan, StageProgress, StageRecord};

@@ -4,6 +4,7 @@ use super::body_contacts::PairSummary;
 use crate::components::{Material, MaterialPoints, PointEnergies};
 use crate::math::{DVec2, Real, SymTensor};
 use bevy_ecs::prelude::{Entity, Resource};
+use serde::{Deserialize, Serialize};
 
 /// A watched material point.
 #[derive(Clone, Debug, PartialEq)]
@@ -17,7 +18,7 @@ pub struct Probe {
 }
 
 /// One recorded state of a probe.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ProbeSample {
     /// Index of the probe in [`Probes::probes`].
     pub probe: usize,
@@ -74,7 +75,7 @@ impl Probes {
 }
 
 /// Energies of all bodies at one time (J per metre of thickness).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct EnergySample {
     /// Simulated time (s).
     pub time: Real,
@@ -138,14 +139,14 @@ impl EnergySample {
 }
 
 /// Energy history, recorded with the probes' period.
-#[derive(Resource, Clone, Debug, Default, PartialEq)]
+#[derive(Resource, Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct EnergyLog {
     /// Samples in time order.
     pub samples: Vec<EnergySample>,
 }
 
 /// One recorded state of a rigid block.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BlockSample {
     /// Index of the block in the scene.
     pub block: u32,
@@ -166,7 +167,7 @@ pub struct BlockSample {
 }
 
 /// Reactions and motion of every block, recorded with the probes' period.
-#[derive(Resource, Clone, Debug, Default, PartialEq)]
+#[derive(Resource, Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct BlockLog {
     /// Block names by scene index.
     pub names: Vec<String>,
@@ -177,7 +178,7 @@ pub struct BlockLog {
 }
 
 /// The reaction on one part of a compound block at one time.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BlockPartSample {
     /// Index of the block in the scene.
     pub block: u32,
@@ -190,7 +191,7 @@ pub struct BlockPartSample {
 }
 
 /// The contacts between two bodies with a contact law at one time.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BodyPairSample {
     /// Simulated time (s).
     pub time: Real,
@@ -204,7 +205,7 @@ pub struct BodyPairSample {
 
 /// Body–body contact history, every pair with a law, recorded with the
 /// probes' period.
-#[derive(Resource, Clone, Debug, Default, PartialEq)]
+#[derive(Resource, Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct BodyPairLog {
     /// Samples in time order, pairs in (a, b) order within a time.
     pub samples: Vec<BodyPairSample>,

@@ -100,5 +100,5 @@ impl Settings {
 }
 
 /// Gravitational acceleration b of eq. 1 (m/s²), the same for every body.
-#[derive(Resource, Clone, Copy, Debug, PartialEq)]
+#[derive(Resource, Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Gravity(pub DVec2);

@@ -3,6 +3,7 @@
 use crate::math::{DVec2, Real, SymTensor};
 use crate::scene::{Scene, Side};
 use bevy_ecs::prelude::{Entity, Resource};
+use serde::{Deserialize, Serialize};
 
 /// The scene's stages and where the run is in them.
 #[derive(Resource, Clone, Debug)]
@@ -10,13 +11,20 @@ pub struct StagePlan {
     /// The scene the stages come from (blocks a stage adds are spawned
     /// from it).
     pub scene: Scene,
-    /// Index of the current stage in `scene.stages`.
-    pub current: usize,
-    /// Simulated time at which the current stage began (s).
-    pub started: Real,
     /// The bodies in scene order, taken when the current stage began (the
     /// end conditions read them each step without querying the world).
     pub bodies: Vec<Entity>,
+    /// Where the run is in the stages (what a checkpoint keeps).
+    pub progress: StageProgress,
+}
+
+/// The state of the stage plan that changes during a run.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct StageProgress {
+    /// Index of the current stage in the scene's stages.
+    pub current: usize,
+    /// Simulated time at which the current stage began (s).
+    pub started: Real,
     /// Largest kinetic energy of the current stage so far (J/m).
     pub peak_kinetic: Real,
     /// Stresses of every body (scene order) after the previous step, kept
@@ -29,7 +37,7 @@ pub struct StagePlan {
 }
 
 /// The point forces a surface traction put into `external_force`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AppliedLoad {
     /// The body.
     pub body: Entity,
@@ -40,7 +48,7 @@ pub struct AppliedLoad {
 }
 
 /// Why a stage ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum StageEndReason {
     /// Its duration elapsed.
     Duration,
@@ -65,7 +73,7 @@ impl StageEndReason {
 }
 
 /// One finished stage.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct StageRecord {
     /// Index in the scene's stages.
     pub index: usize,
@@ -82,7 +90,7 @@ pub struct StageRecord {
 }
 
 /// The stages run so far and the warnings they raised.
-#[derive(Resource, Clone, Debug, Default, PartialEq)]
+#[derive(Resource, Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct StageLog {
     /// Finished stages, in order.
     pub records: Vec<StageRecord>,

@@ -8,7 +8,7 @@ use crate::components::{
 use crate::math::{DVec2, Real, SymTensor};
 use crate::resources::{
     BlockLog, BodyContacts, BodyPairLaw, BodyPairLog, Clock, Diagnostics, EnergyLog, EnergySample,
-    Gravity, Grid, Probe, Probes, SharedLayers, StageLog, StagePlan,
+    Gravity, Grid, Probe, Probes, SharedLayers, StageLog, StagePlan, StageProgress,
 };
 use bevy_ecs::prelude::*;
 
@@ -181,13 +181,8 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
     if !scene.stages.is_empty() {
         let mut plan = StagePlan {
             scene: scene.clone(),
-            current: 0,
-            started: 0.0,
             bodies: Vec::new(),
-            peak_kinetic: 0.0,
-            previous_stress: Vec::new(),
-            loads: Vec::new(),
-            finished: false,
+            progress: StageProgress::default(),
         };
         warnings.extend(crate::systems::enter_stage(&mut world, &mut plan, 0));
         world.insert_resource(plan);

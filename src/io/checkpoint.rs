@@ -1,0 +1,366 @@
+//! Checkpoints: the whole changing state of a run in one file, so that a
+//! long run can be resumed after a stop, or carried on to a later end
+//! time, and continue bit-identically to a run that never stopped.
+//!
+//! A checkpoint holds what the steps change: every body's points, every
+//! block present (pose, velocity, reaction, neighbour list, contacts with
+//! their tangential springs), the body–body and block–block springs, the
+//! settings, gravity and grid edges as the stages left them, where the run
+//! is in its stages, the clock and every record (probes, energy, blocks,
+//! body pairs, stages) that the outputs are written from. What the scene
+//! fixes (shapes, materials, laws, the grid) is rebuilt from the scene, so
+//! a checkpoint resumes only the scene it was written for: its name,
+//! `time.end` and `output` may change, nothing else. Scratch buffers and
+//! the layers' node windows are not kept: they do not change the results.
+//! State that user systems keep in their own components or resources is
+//! not kept either.
+//!
+//! The file is binary (`postcard`): eight magic bytes, then the state,
+//! with every real number stored exactly.
+
+use crate::components::{
+    BlockContacts, BlockId, MaterialPoints, NeighbourList, PartReactions, Pose, Reaction,
+    RigidMotion, RigidVelocity, bodies_in_scene_order,
+};
+use crate::io::state_hash::StateHasher;
+use crate::resources::{
+    BlockContactHistory, BlockLog, BodyContacts, BodyPairContact, BodyPairLog, Clock, ContactWork,
+    EdgeConditions, EnergyLog, Gravity, Grid, ProbeSample, Probes, Settings, StageLog, StagePlan,
+    StageProgress,
+};
+use crate::scene::{OutputSpec, Scene, SceneError, spawn_block};
+use bevy_ecs::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// The file's first bytes.
+const MAGIC: &[u8; 8] = b"MPDEMCK\0";
+
+/// The layout of the stored state; a checkpoint of another layout is
+/// refused rather than misread.
+const FORMAT: u32 = 1;
+
+/// Why a checkpoint could not be written or resumed.
+#[derive(Debug, thiserror::Error)]
+pub enum CheckpointError {
+    /// Reading or writing the file failed.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The checkpoint file.
+        path: PathBuf,
+        /// What failed.
+        source: std::io::Error,
+    },
+    /// The file is not a checkpoint this version can read.
+    #[error("{}: not a checkpoint of this mpdem ({detail})", path.display())]
+    Format {
+        /// The checkpoint file.
+        path: PathBuf,
+        /// What was wrong.
+        detail: String,
+    },
+    /// The checkpoint was written for another scene.
+    #[error(
+        "{}: written for a different scene; between a run and its resumption only the scene's name, time.end and output may change",
+        path.display()
+    )]
+    OtherScene {
+        /// The checkpoint file.
+        path: PathBuf,
+    },
+    /// The scene itself could not be built.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+}
+
+/// Everything a checkpoint stores.
+#[derive(Serialize, Deserialize)]
+struct RunState {
+    format: u32,
+    scene: u64,
+    step: u64,
+    settings: Settings,
+    gravity: Gravity,
+    edges: EdgeConditions,
+    /// Every body in scene order: its entity (bodies are spawned first and
+    /// never removed, so a rebuilt world gives them the same entities,
+    /// which the neighbour lists and loads refer to) and its points.
+    bodies: Vec<(Entity, MaterialPoints)>,
+    /// The blocks present, in scene order.
+    blocks: Vec<BlockState>,
+    block_springs: BlockContactHistory,
+    /// This step's and the previous step's body–body contacts.
+    body_contacts: [Vec<BodyPairContact>; 2],
+    contact_work: ContactWork,
+    probe_samples: Vec<ProbeSample>,
+    energy: EnergyLog,
+    stage_log: StageLog,
+    block_log: BlockLog,
+    body_pairs: BodyPairLog,
+    stages: Option<StageProgress>,
+}
+
+/// One block's changing state.
+#[derive(Serialize, Deserialize)]
+struct BlockState {
+    index: u32,
+    pose: Pose,
+    velocity: RigidVelocity,
+    motion: RigidMotion,
+    reaction: Reaction,
+    parts: PartReactions,
+    neighbours: NeighbourList,
+    contacts: BlockContacts,
+}
+
+/// Identifies a scene up to what a resumed run may change (its name,
+/// `time.end` and `output`): a hash of everything else.
+pub fn scene_fingerprint(scene: &Scene) -> u64 {
+    let mut fixed = scene.clone();
+    fixed.name = None;
+    fixed.time.end = 0.0;
+    fixed.output = OutputSpec::default();
+    let mut hasher = StateHasher::default();
+    hasher.add_bytes(format!("{fixed:?}").as_bytes());
+    hasher.finish()
+}
+
+/// Writes the world's state to `path`, through a temporary file renamed
+/// into place, so a stop while writing leaves the previous checkpoint.
+pub fn write_checkpoint(
+    world: &mut World,
+    fingerprint: u64,
+    path: &Path,
+) -> Result<(), CheckpointError> {
+    let state = capture(world, fingerprint);
+    let mut bytes = MAGIC.to_vec();
+    let io_error = |source| CheckpointError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    bytes = postcard::to_extend(&state, bytes).map_err(|e| CheckpointError::Format {
+        path: path.to_path_buf(),
+        detail: e.to_string(),
+    })?;
+    let mut partial = path.as_os_str().to_owned();
+    partial.push(".partial");
+    let partial = PathBuf::from(partial);
+    std::fs::write(&partial, &bytes).map_err(io_error)?;
+    std::fs::rename(&partial, path).map_err(io_error)
+}
+
+/// Puts the state stored in `path` into `world`, freshly spawned from the
+/// scene whose fingerprint is `fingerprint`.
+pub fn restore_checkpoint(
+    world: &mut World,
+    scene: &Scene,
+    fingerprint: u64,
+    path: &Path,
+) -> Result<(), CheckpointError> {
+    let format_error = |detail: String| CheckpointError::Format {
+        path: path.to_path_buf(),
+        detail,
+    };
+    let bytes = std::fs::read(path).map_err(|source| CheckpointError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let Some(stored) = bytes.strip_prefix(MAGIC) else {
+        return Err(format_error("it does not start as one".into()));
+    };
+    let state: RunState = postcard::from_bytes(stored)
+        .map_err(|e| format_error(format!("its state cannot be read: {e}")))?;
+    if state.format != FORMAT {
+        return Err(format_error(format!(
+            "layout {} where this version reads {FORMAT}",
+            state.format
+        )));
+    }
+    if state.scene != fingerprint {
+        return Err(CheckpointError::OtherScene {
+            path: path.to_path_buf(),
+        });
+    }
+    let bodies = bodies_in_scene_order(world);
+    if bodies.len() != state.bodies.len()
+        || bodies.iter().zip(&state.bodies).any(|(e, s)| *e != s.0)
+    {
+        return Err(format_error("its bodies are not the scene's".into()));
+    }
+    apply(world, scene, state, &bodies).map_err(format_error)
+}
+
+fn capture(world: &mut World, fingerprint: u64) -> RunState {
+    let bodies = bodies_in_scene_order(world)
+        .into_iter()
+        .filter_map(|e| Some((e, world.get::<MaterialPoints>(e)?.clone())))
+        .collect();
+    let mut blocks: Vec<BlockState> = world
+        .query::<(
+            &BlockId,
+            &Pose,
+            &RigidVelocity,
+            &RigidMotion,
+            &Reaction,
+            &PartReactions,
+            &NeighbourList,
+            &BlockContacts,
+        )>()
+        .iter(world)
+        .map(
+            |(id, pose, velocity, motion, reaction, parts, neighbours, contacts)| BlockState {
+                index: id.index,
+                pose: *pose,
+                velocity: *velocity,
+                motion: *motion,
+                reaction: *reaction,
+                parts: parts.clone(),
+                neighbours: neighbours.clone(),
+                contacts: contacts.clone(),
+            },
+        )
+        .collect();
+    blocks.sort_unstable_by_key(|b| b.index);
+    let body_contacts = world.resource::<BodyContacts>();
+    RunState {
+        format: FORMAT,
+        scene: fingerprint,
+        step: world.resource::<Clock>().step,
+        settings: *world.resource::<Settings>(),
+        gravity: *world.resource::<Gravity>(),
+        edges: world.resource::<Grid>().edges,
+        bodies,
+        blocks,
+        block_springs: world.resource::<BlockContactHistory>().clone(),
+        body_contacts: [
+            body_contacts.current.clone(),
+            body_contacts.previous.clone(),
+        ],
+        contact_work: *world.resource::<ContactWork>(),
+        probe_samples: world.resource::<Probes>().samples.clone(),
+        energy: world.resource::<EnergyLog>().clone(),
+        stage_log: world.resource::<StageLog>().clone(),
+        block_log: world.resource::<BlockLog>().clone(),
+        body_pairs: world.resource::<BodyPairLog>().clone(),
+        stages: world
+            .get_resource::<StagePlan>()
+            .map(|plan| plan.progress.clone()),
+    }
+}
+
+fn apply(
+    world: &mut World,
+    scene: &Scene,
+    state: RunState,
+    bodies: &[Entity],
+) -> Result<(), String> {
+    {
+        let mut clock = world.resource_mut::<Clock>();
+        clock.step = state.step;
+        clock.time = state.step as crate::math::Real * clock.dt;
+    }
+    *world.resource_mut::<Settings>() = state.settings;
+    *world.resource_mut::<Gravity>() = state.gravity;
+    world.resource_mut::<Grid>().edges = state.edges;
+    for (entity, points) in state.bodies {
+        if let Some(mut stored) = world.get_mut::<MaterialPoints>(entity) {
+            *stored = points;
+        }
+    }
+    restore_blocks(world, scene, state.blocks, bodies)?;
+    *world.resource_mut::<BlockContactHistory>() = state.block_springs;
+    {
+        let mut contacts = world.resource_mut::<BodyContacts>();
+        let [current, previous] = state.body_contacts;
+        contacts.current = current;
+        contacts.previous = previous;
+    }
+    *world.resource_mut::<ContactWork>() = state.contact_work;
+    // The records were sized for the whole run when the scene was spawned
+    // (recording never allocates in a step): refill them in place.
+    refill(
+        &mut world.resource_mut::<Probes>().samples,
+        state.probe_samples,
+    );
+    refill(
+        &mut world.resource_mut::<EnergyLog>().samples,
+        state.energy.samples,
+    );
+    *world.resource_mut::<StageLog>() = state.stage_log;
+    {
+        let mut log = world.resource_mut::<BlockLog>();
+        refill(&mut log.samples, state.block_log.samples);
+        refill(&mut log.parts, state.block_log.parts);
+    }
+    refill(
+        &mut world.resource_mut::<BodyPairLog>().samples,
+        state.body_pairs.samples,
+    );
+    match (world.get_resource_mut::<StagePlan>(), state.stages) {
+        (Some(mut plan), Some(progress)) => {
+            plan.bodies = bodies.to_vec();
+            plan.progress = progress;
+            if plan.progress.finished {
+                let mut clock = world.resource_mut::<Clock>();
+                clock.end = clock.time;
+            }
+        }
+        (None, None) => {}
+        _ => return Err("its stages are not the scene's".into()),
+    }
+    Ok(())
+}
+
+/// Makes the blocks present those of the checkpoint (stages may have added
+/// or removed some), then gives each its stored state.
+fn restore_blocks(
+    world: &mut World,
+    scene: &Scene,
+    blocks: Vec<BlockState>,
+    bodies: &[Entity],
+) -> Result<(), String> {
+    let present: Vec<(Entity, u32)> = world
+        .query::<(Entity, &BlockId)>()
+        .iter(world)
+        .map(|(e, id)| (e, id.index))
+        .collect();
+    for &(entity, index) in &present {
+        if !blocks.iter().any(|b| b.index == index) {
+            world.despawn(entity);
+        }
+    }
+    for block in blocks {
+        let index = block.index as usize;
+        if index >= scene.blocks.len() {
+            return Err(format!("it has a block {index} the scene does not"));
+        }
+        let entity = match present.iter().find(|(_, i)| *i == block.index) {
+            Some((entity, _)) => *entity,
+            None => {
+                spawn_block(scene, index, world, bodies).map_err(|e| e.to_string())?;
+                world
+                    .query::<(Entity, &BlockId)>()
+                    .iter(world)
+                    .find(|(_, id)| id.index == block.index)
+                    .map(|(e, _)| e)
+                    .ok_or_else(|| format!("block {index} could not be spawned"))?
+            }
+        };
+        let mut stored = world.entity_mut(entity);
+        stored.insert((
+            block.pose,
+            block.velocity,
+            block.motion,
+            block.reaction,
+            block.parts,
+            block.neighbours,
+            block.contacts,
+        ));
+    }
+    Ok(())
+}
+
+fn refill<T>(records: &mut Vec<T>, stored: Vec<T>) {
+    records.clear();
+    records.extend(stored);
+}

@@ -1,0 +1,248 @@
+//! Checkpoints (DESIGN.md section 1, io/): a run written to a checkpoint
+//! and resumed continues bit-identically to the run that never stopped,
+//! through block and body contacts, dynamic blocks, stages (their end
+//! conditions, surcharges, blocks they add or remove) and a later end
+//! time; a checkpoint of another scene, or a file that is not one, is
+//! refused with its path.
+
+mod common;
+
+use mpdem::io::checkpoint::CheckpointError;
+use mpdem::prelude::*;
+use mpdem::resources::{
+    BlockContactHistory, BlockLog, BodyPairLog, EnergyLog, Probes, StageLog, StagePlan,
+};
+use mpdem::scene::StageEnd;
+use std::path::PathBuf;
+
+/// A fresh file path for one test's checkpoint.
+fn checkpoint_file(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("mpdem-checkpoint-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temporary folder");
+    dir.join(format!("{tag}.bin"))
+}
+
+fn build(scene: &Scene) -> Simulation {
+    Simulation::from_scene(scene).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn step_to(sim: &mut Simulation, step: u64) {
+    while sim.clock().step < step {
+        sim.step().unwrap_or_else(|e| panic!("{e}"));
+    }
+}
+
+fn stage(sim: &Simulation) -> usize {
+    sim.world().resource::<StagePlan>().progress.current
+}
+
+/// Steps until stage `index` has begun, then `more` steps; returns the step.
+fn step_into_stage(sim: &mut Simulation, index: usize, more: u64) -> u64 {
+    while stage(sim) < index {
+        sim.step().unwrap_or_else(|e| panic!("{e}"));
+    }
+    let step = sim.clock().step + more;
+    step_to(sim, step);
+    step
+}
+
+fn resume(scene: &Scene, file: &std::path::Path) -> Simulation {
+    Simulation::resume(scene, file).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Every point and block state (the state hash), every point column and
+/// every record the outputs are written from are equal.
+fn assert_same_run(resumed: &mut Simulation, straight: &mut Simulation) {
+    assert_eq!(resumed.clock(), straight.clock());
+    assert_eq!(resumed.state_hash(), straight.state_hash());
+    for (entity, name) in straight.bodies() {
+        assert_eq!(
+            resumed.points(entity),
+            straight.points(entity),
+            "body '{name}'"
+        );
+    }
+    // Records are long: report which differs, not their contents.
+    let (a, b) = (resumed.world(), straight.world());
+    assert!(
+        a.resource::<Probes>() == b.resource::<Probes>(),
+        "probes differ"
+    );
+    assert!(
+        a.resource::<EnergyLog>() == b.resource::<EnergyLog>(),
+        "energy differs"
+    );
+    assert!(
+        a.resource::<BlockLog>() == b.resource::<BlockLog>(),
+        "block records differ"
+    );
+    assert!(
+        a.resource::<BodyPairLog>() == b.resource::<BodyPairLog>(),
+        "body pair records differ"
+    );
+    assert_eq!(a.resource::<StageLog>(), b.resource::<StageLog>());
+    assert!(
+        a.resource::<BlockContactHistory>() == b.resource::<BlockContactHistory>(),
+        "block springs differ"
+    );
+}
+
+/// Runs `scene` to `checkpoint_at`, writes a checkpoint, resumes it in a
+/// new simulation and compares both at step `end`.
+fn resumes_bit_identically(tag: &str, scene: &Scene, checkpoint_at: u64, end: u64) {
+    let file = checkpoint_file(tag);
+    let mut straight = build(scene);
+    step_to(&mut straight, checkpoint_at);
+    straight.write_checkpoint(&file).expect("checkpoint");
+    step_to(&mut straight, end);
+    let mut resumed = resume(scene, &file);
+    assert_eq!(resumed.clock().step, checkpoint_at);
+    step_to(&mut resumed, end);
+    assert_same_run(&mut resumed, &mut straight);
+}
+
+#[test]
+fn point_block_contacts_resume_between_neighbour_list_rebuilds() {
+    // Neighbour lists are rebuilt every 10 steps: stop between two.
+    let scene = common::load_scene("sliding_45.ron");
+    resumes_bit_identically("sliding", &scene, 155, 400);
+}
+
+#[test]
+fn body_contacts_resume_with_their_tangential_springs() {
+    let mut rings = common::load_scene("two_rings.ron");
+    for body in &mut rings.bodies {
+        body.points_per_cell = 1;
+    }
+    // The rings touch at 0.2 ms (200 steps): stop in contact.
+    resumes_bit_identically("rings", &rings, 705, 1000);
+}
+
+#[test]
+fn a_dynamic_block_resumes_and_runs_on_to_a_later_end() {
+    // The box tips over the table's edge (block–block springs); the first
+    // run ends at 0.25 s, the resumed one is given 0.35 s. The sampling
+    // interval is set: its default follows the end time.
+    let mut short = common::load_scene("rigid_tip.ron");
+    short.time.end = 0.25;
+    short.output.probe_interval = Some(1e-3);
+    let mut long = short.clone();
+    long.time.end = 0.35;
+    let file = checkpoint_file("tip");
+    let mut first = build(&short);
+    first.run().expect("run");
+    first.write_checkpoint(&file).expect("checkpoint");
+    let mut resumed = resume(&long, &file);
+    resumed.run().expect("run");
+    let mut straight = build(&long);
+    straight.run().expect("run");
+    assert_eq!(straight.clock().step, 3500);
+    assert_same_run(&mut resumed, &mut straight);
+}
+
+/// The pile at the reduced size of tests/pile.rs, driven for 0.1 s, then
+/// a fourth stage that removes the pile.
+fn reduced_pile() -> Scene {
+    let mut scene = common::load_scene("pile_penetration.ron");
+    scene.grid.cell_size = 0.16;
+    scene.grid.cells = (50, 35);
+    scene.time.dt = 2e-4;
+    scene.stages[2].end = StageEnd::Duration(0.1);
+    let mut pulled = scene.stages[1].clone();
+    pulled.name = "pulled".into();
+    pulled.end = StageEnd::Duration(0.02);
+    pulled.tractions.clear();
+    pulled.remove_blocks = vec!["pile".into()];
+    scene.stages.push(pulled);
+    scene
+}
+
+#[test]
+fn stages_resume_mid_stage_with_their_loads_and_blocks() {
+    let scene = reduced_pile();
+    let files = ["geostatic", "driven", "pulled"].map(|t| checkpoint_file(&format!("pile-{t}")));
+    let mut straight = build(&scene);
+    // In the geostatic stage (its kinetic energy peak so far matters),
+    // while the pile is driven (surcharge, the pile's set velocity), and
+    // after the pile is removed (the rebuilt world has it: it must go).
+    step_to(&mut straight, 2000);
+    straight.write_checkpoint(&files[0]).expect("checkpoint");
+    let driven = step_into_stage(&mut straight, 2, 50);
+    straight.write_checkpoint(&files[1]).expect("checkpoint");
+    let pulled = step_into_stage(&mut straight, 3, 20);
+    straight.write_checkpoint(&files[2]).expect("checkpoint");
+    straight.run().expect("run");
+    assert_eq!(straight.world().resource::<StageLog>().records.len(), 4);
+    for (file, from) in files.iter().zip([2000, driven, pulled]) {
+        let mut resumed = resume(&scene, file);
+        assert_eq!(resumed.clock().step, from);
+        resumed.run().expect("run");
+        assert_same_run(&mut resumed, &mut straight);
+    }
+}
+
+#[test]
+fn a_block_a_stage_added_is_spawned_again_on_resuming() {
+    let mut scene = reduced_pile();
+    scene.stages.pop();
+    let pile = scene.blocks.iter_mut().find(|b| b.name == "pile").unwrap();
+    pile.present = false;
+    scene.stages[2].add_blocks = vec!["pile".into()];
+    let file = checkpoint_file("pile-added");
+    let mut straight = build(&scene);
+    let at = step_into_stage(&mut straight, 2, 30);
+    straight.write_checkpoint(&file).expect("checkpoint");
+    step_to(&mut straight, at + 60);
+    let mut resumed = resume(&scene, &file);
+    step_to(&mut resumed, at + 60);
+    assert_same_run(&mut resumed, &mut straight);
+}
+
+#[test]
+fn a_checkpoint_of_another_scene_or_no_checkpoint_is_refused() {
+    let scene = common::load_scene("wave_1d.ron");
+    let file = checkpoint_file("wave");
+    let mut sim = build(&scene);
+    step_to(&mut sim, 10);
+    sim.write_checkpoint(&file).expect("checkpoint");
+    let mut other = scene.clone();
+    other.time.dt *= 0.5;
+    let refusal = |scene: &Scene, file: &std::path::Path| match Simulation::resume(scene, file) {
+        Ok(_) => panic!("{} was resumed", file.display()),
+        Err(e) => e,
+    };
+    let error = refusal(&other, &file);
+    assert!(
+        matches!(error, CheckpointError::OtherScene { .. }),
+        "{error}"
+    );
+    assert!(
+        error.to_string().contains("written for a different scene"),
+        "{error}"
+    );
+    // The name, the end time and the outputs may change.
+    let mut renamed = scene.clone();
+    renamed.name = Some("wave, longer".into());
+    renamed.time.end *= 2.0;
+    renamed.output.frame_interval = Some(0.01);
+    assert_eq!(resume(&renamed, &file).clock().step, 10);
+    // A file cut short, one that is not a checkpoint, and none at all.
+    let bytes = std::fs::read(&file).expect("checkpoint");
+    let cut = checkpoint_file("cut");
+    std::fs::write(&cut, &bytes[..bytes.len() / 2]).expect("write");
+    let error = refusal(&scene, &cut);
+    assert!(
+        error.to_string().contains("its state cannot be read"),
+        "{error}"
+    );
+    let scene_file = common::scene_path("wave_1d.ron");
+    let error = refusal(&scene, &scene_file);
+    assert!(
+        error.to_string().contains("does not start as one"),
+        "{error}"
+    );
+    let missing = checkpoint_file("missing");
+    let error = refusal(&scene, &missing);
+    assert!(matches!(error, CheckpointError::Io { .. }), "{error}");
+    assert!(error.to_string().contains("missing.bin"), "{error}");
+}
