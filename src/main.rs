@@ -192,10 +192,11 @@ fn run(
             checkpoint.display()
         );
         RunOutput::resume(&dir, frame_interval, curves, &sim)
+            .map_err(|e| format!("{}: cannot carry on the output: {e}", dir.display()))?
     } else {
         RunOutput::create(&dir, frame_interval, curves, &mut sim)
-    }
-    .map_err(|e| format!("{}: cannot write output: {e}", dir.display()))?;
+            .map_err(|e| format!("{}: cannot write output: {e}", dir.display()))?
+    };
     let checkpoint_steps = checkpoints
         .every
         .map(|t| ((t / clock.dt).round() as u64).max(1));

@@ -172,7 +172,6 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
             *velocity = change.velocity;
         }
     }
-    let origin = world.resource::<Grid>().origin;
     for traction in &spec.tractions {
         let Some(body) = bodies.iter().copied().find(|e| {
             world
@@ -194,7 +193,7 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
                 points.external_force[p as usize] -= f;
             }
         }
-        let forces: Vec<(u32, DVec2)> = side_points(&points, origin, traction.side)
+        let forces: Vec<(u32, DVec2)> = side_points(&points, traction.side)
             .into_iter()
             .map(|(p, width)| (p, traction.traction * width))
             .collect();
@@ -229,26 +228,35 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
 /// The outermost points of a body on `side`, with the width of surface
 /// each carries, in point order.
 ///
-/// The side is cut into strips as wide as the body's narrowest point
-/// domain, aligned with the grid's origin: columns for `Top` and `Bottom`,
-/// rows for `Left` and `Right`. Each strip goes to the outermost point
-/// (highest for `Top`, lowest for `Bottom`, rightmost for `Right`,
-/// leftmost for `Left`, by initial position) whose domain covers the
-/// strip's centre, and a point carries the width of the strips it gets.
-/// A body filled on the lattice has one strip per lattice column (row),
-/// each covered by that column's points alone; a point list's wider
-/// domains cover several strips, so every strip of its side is loaded
-/// once whatever the points' sizes.
-pub fn side_points(points: &MaterialPoints, origin: DVec2, side: Side) -> Vec<(u32, Real)> {
+/// The side is cut into strips (columns for `Top` and `Bottom`, rows for
+/// `Left` and `Right`) from the body's first domain edge, as wide as its
+/// narrowest point domain, or a sixteenth of its widest if that is wider
+/// (so a sliver point cannot cut the side into millions of strips). Each
+/// strip goes to the outermost point (highest for `Top`, lowest for
+/// `Bottom`, rightmost for `Right`, leftmost for `Left`, by initial
+/// position) whose domain holds the strip's centre, and a point carries the
+/// width of the strips it gets. A body filled on the lattice has one strip
+/// per lattice column (row), held by that column's points alone; a point
+/// list's wider domains hold several strips, so every strip of its side is
+/// loaded once whatever the points' sizes. Strips start at a domain edge so
+/// that domains tiling a lattice never have a strip centre on their edges.
+pub fn side_points(points: &MaterialPoints, side: Side) -> Vec<(u32, Real)> {
     let across_side = |half: DVec2| match side {
         Side::Top | Side::Bottom => half.x,
         Side::Left | Side::Right => half.y,
     };
-    let strip = points
-        .half_size
-        .iter()
-        .map(|h| 2.0 * across_side(*h))
-        .fold(Real::INFINITY, Real::min);
+    let along_side = |x: DVec2| match side {
+        Side::Top | Side::Bottom => x.x,
+        Side::Left | Side::Right => x.y,
+    };
+    let (mut narrowest, mut widest, mut start) = (Real::INFINITY, 0.0, Real::INFINITY);
+    for (x, half) in points.initial_position.iter().zip(&points.half_size) {
+        let half = across_side(*half);
+        narrowest = narrowest.min(2.0 * half);
+        widest = Real::max(widest, 2.0 * half);
+        start = start.min(along_side(*x) - half);
+    }
+    let strip = narrowest.max(widest / 16.0);
     let mut outermost: BTreeMap<i64, (u32, Real)> = BTreeMap::new();
     for (p, (x, half)) in points
         .initial_position
@@ -256,17 +264,15 @@ pub fn side_points(points: &MaterialPoints, origin: DVec2, side: Side) -> Vec<(u
         .zip(&points.half_size)
         .enumerate()
     {
-        let (along, across) = match side {
-            Side::Top | Side::Bottom => (x.x - origin.x, x.y),
-            Side::Left | Side::Right => (x.y - origin.y, x.x),
-        };
+        let (along, half) = (along_side(*x) - start, across_side(*half));
         let outward = match side {
-            Side::Top | Side::Right => across,
-            Side::Bottom | Side::Left => -across,
+            Side::Top => x.y,
+            Side::Bottom => -x.y,
+            Side::Right => x.x,
+            Side::Left => -x.x,
         };
-        let half = across_side(*half);
-        // Strip k's centre is at (k + 1/2) strip: the strips whose centre
-        // lies inside [along - half, along + half].
+        // Strip k's centre is at (k + 1/2) strip from the start: the strips
+        // whose centre lies inside [along - half, along + half].
         let first = ((along - half) / strip - 0.5).ceil() as i64;
         let last = ((along + half) / strip - 0.5).floor() as i64;
         for k in first..=last {

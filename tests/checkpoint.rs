@@ -7,10 +7,12 @@
 
 mod common;
 
+use mpdem::components::{BlockContacts, BlockId, NeighbourList, StepTravel};
 use mpdem::io::checkpoint::CheckpointError;
 use mpdem::prelude::*;
 use mpdem::resources::{
-    BlockContactHistory, BlockLog, BodyPairLog, EnergyLog, Probes, StageLog, StagePlan,
+    BlockContactHistory, BlockLog, BodyPairLog, EnergyLog, Probes, StageEndReason, StageLog,
+    StagePlan,
 };
 use mpdem::scene::StageEnd;
 use std::path::PathBuf;
@@ -61,7 +63,25 @@ fn assert_same_run(resumed: &mut Simulation, straight: &mut Simulation) {
             straight.points(entity),
             "body '{name}'"
         );
+        let travel = |sim: &Simulation| sim.world().get::<StepTravel>(entity).copied();
+        assert_eq!(travel(resumed), travel(straight), "body '{name}'");
     }
+    // Every block's neighbour list (its age, travel and points) and
+    // contacts with their springs.
+    let blocks = |sim: &mut Simulation| {
+        let world = sim.world_mut();
+        let mut blocks: Vec<_> = world
+            .query::<(&BlockId, &NeighbourList, &BlockContacts)>()
+            .iter(world)
+            .map(|(id, list, contacts)| (id.index, list.clone(), contacts.clone()))
+            .collect();
+        blocks.sort_unstable_by_key(|b| b.0);
+        blocks
+    };
+    assert!(
+        blocks(resumed) == blocks(straight),
+        "blocks' contacts differ"
+    );
     // Records are long: report which differs, not their contents.
     let (a, b) = (resumed.world(), straight.world());
     assert!(
@@ -106,6 +126,9 @@ fn point_block_contacts_resume_between_neighbour_list_rebuilds() {
     // Neighbour lists are rebuilt every 10 steps: stop between two.
     let scene = common::load_scene("sliding_45.ron");
     resumes_bit_identically("sliding", &scene, 155, 400);
+    // Before the next rebuild the lists still add up the points' travel,
+    // which must carry over the checkpoint.
+    resumes_bit_identically("sliding-between", &scene, 155, 158);
 }
 
 #[test]
@@ -179,6 +202,38 @@ fn stages_resume_mid_stage_with_their_loads_and_blocks() {
         resumed.run().expect("run");
         assert_same_run(&mut resumed, &mut straight);
     }
+}
+
+#[test]
+fn a_stage_cut_short_by_the_end_time_goes_on_when_the_end_grows() {
+    // The run ends (time.end) in the geostatic stage, which is recorded as
+    // cut short; resumed with a later end, that stage goes on, as in a run
+    // given the later end from the start.
+    let mut short = reduced_pile();
+    short.time.end = 0.2;
+    short.output.probe_interval = Some(0.01);
+    let mut long = short.clone();
+    long.time.end = 0.4;
+    let file = checkpoint_file("pile-cut-short");
+    let mut first = build(&short);
+    first.run().expect("run");
+    let log = first.world().resource::<StageLog>();
+    assert_eq!(
+        log.records.last().map(|r| r.reason),
+        Some(StageEndReason::SceneEnd)
+    );
+    first.write_checkpoint(&file).expect("checkpoint");
+    let mut resumed = resume(&long, &file);
+    assert!(resumed.world().resource::<StageLog>().records.is_empty());
+    resumed.run().expect("run");
+    let mut straight = build(&long);
+    straight.run().expect("run");
+    assert_eq!(straight.clock().step, 2000);
+    assert_same_run(&mut resumed, &mut straight);
+    // Resumed with the same end, the run stays finished.
+    let again = resume(&short, &file);
+    assert!(again.clock().finished());
+    assert_eq!(again.world().resource::<StageLog>().records.len(), 1);
 }
 
 #[test]

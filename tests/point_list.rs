@@ -153,10 +153,9 @@ fn listed_column_with_a_coarse_top() -> Scene {
 fn a_listed_bodys_sides_are_found_whatever_its_points_sizes() {
     let mut sim = Simulation::from_scene(&listed_column_with_a_coarse_top())
         .unwrap_or_else(|e| panic!("{e}"));
-    let origin = sim.world().resource::<Grid>().origin;
     let points = sim.points_of("soil").unwrap().clone();
     let side = |side| -> Vec<(DVec2, Real)> {
-        side_points(&points, origin, side)
+        side_points(&points, side)
             .into_iter()
             .map(|(p, width)| (points.initial_position[p as usize], width))
             .collect()
@@ -185,6 +184,30 @@ fn a_listed_bodys_sides_are_found_whatever_its_points_sizes() {
     let height: Real = right.iter().map(|(_, w)| w).sum();
     assert_eq!(right.len(), 39, "{right:?}");
     assert!((height - 4.0).abs() < 1e-9, "{height}");
+}
+
+#[test]
+fn a_listed_body_off_the_grids_lattice_has_one_strip_per_column() {
+    // The column's points shifted half a spacing (0.05 m), so their
+    // domains' edges fall on the grid's lattice: nine columns at x = 0.1,
+    // 0.2, ..., 0.9, each loaded once over its own 0.1 m.
+    let mut scene = listed_geostatic_column();
+    let Shape::Points { points, .. } = &mut scene.bodies[0].shape else {
+        unreachable!()
+    };
+    points.retain(|p| p.position.x < 0.9);
+    for p in points.iter_mut() {
+        p.position.x += 0.05;
+    }
+    let mut sim = Simulation::from_scene(&scene).unwrap_or_else(|e| panic!("{e}"));
+    let points = sim.points_of("soil").unwrap();
+    let top = side_points(points, Side::Top);
+    assert_eq!(top.len(), 9, "{top:?}");
+    for (k, (p, width)) in top.iter().enumerate() {
+        let x = points.initial_position[*p as usize];
+        assert!((x.x - 0.1 * (k + 1) as Real).abs() < 1e-12, "{x}");
+        assert!((width - 0.1).abs() < 1e-12, "{width}");
+    }
 }
 
 #[test]

@@ -51,7 +51,7 @@ impl std::ops::Add for PointEnergies {
 /// The largest distance any point of the body moved in the last
 /// grid-to-particle update (m). The contact broad phase adds it up to know
 /// when a point may have left a neighbour list's margin.
-#[derive(Component, Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct StepTravel(pub Real);
 
 /// Every point of one body, one column per field. All columns have the same

@@ -15,22 +15,26 @@
 //! State that user systems keep in their own components or resources is
 //! not kept either.
 //!
-//! The file is binary (`postcard`): eight magic bytes, then the state,
-//! with every real number stored exactly.
+//! The file is binary: eight magic bytes, the layout's number (`u32`,
+//! little-endian), then the state (`postcard`), every real number stored
+//! exactly.
 
 use crate::components::{
     BlockContacts, BlockId, MaterialPoints, NeighbourList, PartReactions, Pose, Reaction,
-    RigidMotion, RigidVelocity, bodies_in_scene_order,
+    RigidMotion, RigidVelocity, StepTravel, bodies_in_scene_order,
 };
 use crate::io::state_hash::StateHasher;
+use crate::math::Real;
 use crate::resources::{
     BlockContactHistory, BlockLog, BodyContacts, BodyPairContact, BodyPairLog, Clock, ContactWork,
-    EdgeConditions, EnergyLog, Gravity, Grid, ProbeSample, Probes, Settings, StageLog, StagePlan,
-    StageProgress,
+    EdgeConditions, EnergyLog, Gravity, Grid, ProbeSample, Probes, Settings, StageEndReason,
+    StageLog, StagePlan, StageProgress,
 };
 use crate::scene::{OutputSpec, Scene, SceneError, spawn_block};
 use bevy_ecs::prelude::*;
 use serde::{Deserialize, Serialize};
+use std::fmt::Write as _;
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 /// The file's first bytes.
@@ -50,6 +54,14 @@ pub enum CheckpointError {
         path: PathBuf,
         /// What failed.
         source: std::io::Error,
+    },
+    /// The state could not be encoded.
+    #[error("{}: cannot encode the run's state: {detail}", path.display())]
+    Encode {
+        /// The checkpoint file.
+        path: PathBuf,
+        /// What failed.
+        detail: String,
     },
     /// The file is not a checkpoint this version can read.
     #[error("{}: not a checkpoint of this mpdem ({detail})", path.display())]
@@ -76,7 +88,6 @@ pub enum CheckpointError {
 /// Everything a checkpoint stores.
 #[derive(Serialize, Deserialize)]
 struct RunState {
-    format: u32,
     scene: u64,
     step: u64,
     settings: Settings,
@@ -84,8 +95,10 @@ struct RunState {
     edges: EdgeConditions,
     /// Every body in scene order: its entity (bodies are spawned first and
     /// never removed, so a rebuilt world gives them the same entities,
-    /// which the neighbour lists and loads refer to) and its points.
-    bodies: Vec<(Entity, MaterialPoints)>,
+    /// which the neighbour lists and loads refer to), its points and how
+    /// far they moved in the last step (the neighbour lists' next
+    /// rebuild depends on it).
+    bodies: Vec<(Entity, MaterialPoints, StepTravel)>,
     /// The blocks present, in scene order.
     blocks: Vec<BlockState>,
     block_springs: BlockContactHistory,
@@ -121,7 +134,8 @@ pub fn scene_fingerprint(scene: &Scene) -> u64 {
     fixed.time.end = 0.0;
     fixed.output = OutputSpec::default();
     let mut hasher = StateHasher::default();
-    hasher.add_bytes(format!("{fixed:?}").as_bytes());
+    // Writing into the hasher cannot fail.
+    let _ = write!(hasher, "{fixed:?}");
     hasher.finish()
 }
 
@@ -134,19 +148,27 @@ pub fn write_checkpoint(
 ) -> Result<(), CheckpointError> {
     let state = capture(world, fingerprint);
     let mut bytes = MAGIC.to_vec();
-    let io_error = |source| CheckpointError::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    bytes = postcard::to_extend(&state, bytes).map_err(|e| CheckpointError::Format {
+    bytes.extend_from_slice(&FORMAT.to_le_bytes());
+    let bytes = postcard::to_extend(&state, bytes).map_err(|e| CheckpointError::Encode {
         path: path.to_path_buf(),
         detail: e.to_string(),
     })?;
     let mut partial = path.as_os_str().to_owned();
     partial.push(".partial");
     let partial = PathBuf::from(partial);
-    std::fs::write(&partial, &bytes).map_err(io_error)?;
-    std::fs::rename(&partial, path).map_err(io_error)
+    let write = || -> std::io::Result<()> {
+        let mut file = std::fs::File::create(&partial)?;
+        file.write_all(&bytes)?;
+        file.sync_all()
+    };
+    write().map_err(|source| CheckpointError::Io {
+        path: partial.clone(),
+        source,
+    })?;
+    std::fs::rename(&partial, path).map_err(|source| CheckpointError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// Puts the state stored in `path` into `world`, freshly spawned from the
@@ -168,14 +190,17 @@ pub fn restore_checkpoint(
     let Some(stored) = bytes.strip_prefix(MAGIC) else {
         return Err(format_error("it does not start as one".into()));
     };
-    let state: RunState = postcard::from_bytes(stored)
-        .map_err(|e| format_error(format!("its state cannot be read: {e}")))?;
-    if state.format != FORMAT {
+    let Some((format, stored)) = stored.split_first_chunk::<4>() else {
+        return Err(format_error("it ends after its first bytes".into()));
+    };
+    let format = u32::from_le_bytes(*format);
+    if format != FORMAT {
         return Err(format_error(format!(
-            "layout {} where this version reads {FORMAT}",
-            state.format
+            "layout {format} where this version reads {FORMAT}"
         )));
     }
+    let state: RunState = postcard::from_bytes(stored)
+        .map_err(|e| format_error(format!("its state cannot be read: {e}")))?;
     if state.scene != fingerprint {
         return Err(CheckpointError::OtherScene {
             path: path.to_path_buf(),
@@ -193,7 +218,10 @@ pub fn restore_checkpoint(
 fn capture(world: &mut World, fingerprint: u64) -> RunState {
     let bodies = bodies_in_scene_order(world)
         .into_iter()
-        .filter_map(|e| Some((e, world.get::<MaterialPoints>(e)?.clone())))
+        .filter_map(|e| {
+            let travel = world.get::<StepTravel>(e).copied().unwrap_or_default();
+            Some((e, world.get::<MaterialPoints>(e)?.clone(), travel))
+        })
         .collect();
     let mut blocks: Vec<BlockState> = world
         .query::<(
@@ -223,7 +251,6 @@ fn capture(world: &mut World, fingerprint: u64) -> RunState {
     blocks.sort_unstable_by_key(|b| b.index);
     let body_contacts = world.resource::<BodyContacts>();
     RunState {
-        format: FORMAT,
         scene: fingerprint,
         step: world.resource::<Clock>().step,
         settings: *world.resource::<Settings>(),
@@ -257,15 +284,13 @@ fn apply(
     {
         let mut clock = world.resource_mut::<Clock>();
         clock.step = state.step;
-        clock.time = state.step as crate::math::Real * clock.dt;
+        clock.time = state.step as Real * clock.dt;
     }
     *world.resource_mut::<Settings>() = state.settings;
     *world.resource_mut::<Gravity>() = state.gravity;
     world.resource_mut::<Grid>().edges = state.edges;
-    for (entity, points) in state.bodies {
-        if let Some(mut stored) = world.get_mut::<MaterialPoints>(entity) {
-            *stored = points;
-        }
+    for (entity, points, travel) in state.bodies {
+        world.entity_mut(entity).insert((points, travel));
     }
     restore_blocks(world, scene, state.blocks, bodies)?;
     *world.resource_mut::<BlockContactHistory>() = state.block_springs;
@@ -300,15 +325,40 @@ fn apply(
         (Some(mut plan), Some(progress)) => {
             plan.bodies = bodies.to_vec();
             plan.progress = progress;
-            if plan.progress.finished {
-                let mut clock = world.resource_mut::<Clock>();
-                clock.end = clock.time;
-            }
         }
         (None, None) => {}
         _ => return Err("its stages are not the scene's".into()),
     }
+    carry_on_a_stage_cut_short(world);
     Ok(())
+}
+
+/// A stage still running when the run reached its `time.end` was ended
+/// there (`SceneEnd`, with a warning). If the resumed scene ends later, the
+/// stage goes on as in a run that was given the later end from the start:
+/// that record and its warning are taken back. A plan that finished
+/// otherwise stays finished, and the run with it.
+fn carry_on_a_stage_cut_short(world: &mut World) {
+    let Some(mut plan) = world.remove_resource::<StagePlan>() else {
+        return;
+    };
+    // The clock holds the checkpoint's step and the resumed scene's end.
+    let clock = *world.resource::<Clock>();
+    if plan.progress.finished {
+        let mut log = world.resource_mut::<StageLog>();
+        let cut_short = log
+            .records
+            .last()
+            .is_some_and(|r| r.reason == StageEndReason::SceneEnd);
+        if cut_short && !clock.finished() {
+            log.records.pop();
+            log.warnings.pop();
+            plan.progress.finished = false;
+        } else {
+            world.resource_mut::<Clock>().end = clock.time;
+        }
+    }
+    world.insert_resource(plan);
 }
 
 /// Makes the blocks present those of the checkpoint (stages may have added

@@ -73,8 +73,10 @@ impl RunOutput {
 
     /// Carries on the folder of a run that `sim` was resumed from (see
     /// [`Simulation::resume`]): the frames its collections list up to the
-    /// checkpoint's time are kept, later ones are written again, every
-    /// `frame_interval` as for a new run. A folder without `points.pvd` is
+    /// checkpoint's step are kept, later ones are written again, every
+    /// `frame_interval` as for a new run. The extra frame a finished run
+    /// writes at its end, off that interval, is dropped too: a run that
+    /// never stopped would not have it. A folder without `points.pvd` is
     /// not a run's folder: an error.
     pub fn resume(
         dir: &Path,
@@ -83,19 +85,24 @@ impl RunOutput {
         sim: &Simulation,
     ) -> std::io::Result<Self> {
         let clock = sim.clock();
-        let up_to_now = |path: &Path| -> std::io::Result<Vec<(Real, String)>> {
+        let frame_every = ((frame_interval / clock.dt).round() as u64).max(1);
+        let on_interval = clock.step.is_multiple_of(frame_every);
+        let kept = |path: &Path| -> std::io::Result<Vec<(Real, String)>> {
             let mut frames = read_collection(path)
                 .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", path.display())))?;
-            frames.retain(|(time, _)| *time <= clock.time + 0.5 * clock.dt);
+            frames.retain(|(time, _)| {
+                let before = *time < clock.time - 0.5 * clock.dt;
+                before || (on_interval && *time <= clock.time + 0.5 * clock.dt)
+            });
             Ok(frames)
         };
         let blocks = dir.join("blocks.pvd");
         Ok(Self {
             dir: dir.to_path_buf(),
-            frame_every: ((frame_interval / clock.dt).round() as u64).max(1),
-            frames: up_to_now(&dir.join("points.pvd"))?,
+            frame_every,
+            frames: kept(&dir.join("points.pvd"))?,
             block_frames: if blocks.is_file() {
-                up_to_now(&blocks)?
+                kept(&blocks)?
             } else {
                 Vec::new()
             },

@@ -62,6 +62,15 @@ impl StateHasher {
     }
 }
 
+/// Hashes formatted text as it is written, e.g. `write!(hasher, "{x:?}")`,
+/// without building the string.
+impl std::fmt::Write for StateHasher {
+    fn write_str(&mut self, s: &str) -> std::fmt::Result {
+        self.add_bytes(s.as_bytes());
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -117,7 +117,12 @@ pub fn write_collection(path: &Path, entries: &[(Real, String)]) -> std::io::Res
             format!("collection entry {file:?} has non-finite time {time}"),
         ));
     }
-    let mut out = BufWriter::new(File::create(path)?);
+    // Written beside and renamed into place: a run stopped while writing
+    // keeps the previous collection, which a resumed run reads.
+    let mut partial = path.as_os_str().to_owned();
+    partial.push(".partial");
+    let partial = std::path::PathBuf::from(partial);
+    let mut out = BufWriter::new(File::create(&partial)?);
     writeln!(out, r#"<?xml version="1.0"?>"#)?;
     writeln!(out, r#"<VTKFile type="Collection" version="0.1">"#)?;
     writeln!(out, "  <Collection>")?;
@@ -130,7 +135,9 @@ pub fn write_collection(path: &Path, entries: &[(Real, String)]) -> std::io::Res
     }
     writeln!(out, "  </Collection>")?;
     writeln!(out, "</VTKFile>")?;
-    out.flush()
+    out.flush()?;
+    drop(out);
+    std::fs::rename(&partial, path)
 }
 
 /// Reads back a collection written by [`write_collection`]: its (time,
