@@ -10,25 +10,13 @@ use mpdem::resources::{StageEndReason, StageLog};
 /// of σ_xx / σ_yy from `k0` over the points carrying more than 1 kPa.
 fn base_stress_and_k0_error(sim: &mut Simulation, k0: Real) -> (Real, Real) {
     let points = sim.points_of("soil").expect("soil");
-    let lowest = points
-        .position
-        .iter()
-        .map(|x| x.y)
-        .fold(Real::INFINITY, Real::min);
-    let base: Vec<Real> = points
-        .position
-        .iter()
-        .zip(&points.stress)
-        .filter(|(x, _)| x.y < lowest + 1e-6)
-        .map(|(_, s)| s.yy)
-        .collect();
     let k0_error = points
         .stress
         .iter()
         .filter(|s| s.yy < -1e3)
         .map(|s| (s.xx / s.yy - k0).abs() / k0)
         .fold(0.0, Real::max);
-    (base.iter().sum::<Real>() / base.len() as Real, k0_error)
+    (common::base_stress(points), k0_error)
 }
 
 #[test]

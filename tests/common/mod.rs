@@ -84,3 +84,21 @@ pub fn centre_of_mass_motion(points: &MaterialPoints) -> (DVec2, DVec2) {
         mean(&points.velocity),
     )
 }
+
+/// The mean σ_yy of a body's lowest row of points (within 1 µm of the
+/// lowest), e.g. the base stress of a soil column.
+pub fn base_stress(points: &MaterialPoints) -> Real {
+    let lowest = points
+        .position
+        .iter()
+        .map(|x| x.y)
+        .fold(Real::INFINITY, Real::min);
+    let base: Vec<Real> = points
+        .position
+        .iter()
+        .zip(&points.stress)
+        .filter(|(x, _)| x.y < lowest + 1e-6)
+        .map(|(_, s)| s.yy)
+        .collect();
+    base.iter().sum::<Real>() / base.len() as Real
+}
