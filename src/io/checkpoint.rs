@@ -321,15 +321,16 @@ fn apply(
         &mut world.resource_mut::<BodyPairLog>().samples,
         state.body_pairs.samples,
     );
-    match (world.get_resource_mut::<StagePlan>(), state.stages) {
+    match (world.remove_resource::<StagePlan>(), state.stages) {
         (Some(mut plan), Some(progress)) => {
             plan.bodies = bodies.to_vec();
             plan.progress = progress;
+            carry_on_a_stage_cut_short(world, &mut plan.progress);
+            world.insert_resource(plan);
         }
         (None, None) => {}
         _ => return Err("its stages are not the scene's".into()),
     }
-    carry_on_a_stage_cut_short(world);
     Ok(())
 }
 
@@ -338,27 +339,24 @@ fn apply(
 /// stage goes on as in a run that was given the later end from the start:
 /// that record and its warning are taken back. A plan that finished
 /// otherwise stays finished, and the run with it.
-fn carry_on_a_stage_cut_short(world: &mut World) {
-    let Some(mut plan) = world.remove_resource::<StagePlan>() else {
+fn carry_on_a_stage_cut_short(world: &mut World, progress: &mut StageProgress) {
+    if !progress.finished {
         return;
-    };
+    }
     // The clock holds the checkpoint's step and the resumed scene's end.
     let clock = *world.resource::<Clock>();
-    if plan.progress.finished {
-        let mut log = world.resource_mut::<StageLog>();
-        let cut_short = log
-            .records
-            .last()
-            .is_some_and(|r| r.reason == StageEndReason::SceneEnd);
-        if cut_short && !clock.finished() {
-            log.records.pop();
-            log.warnings.pop();
-            plan.progress.finished = false;
-        } else {
-            world.resource_mut::<Clock>().end = clock.time;
-        }
+    let mut log = world.resource_mut::<StageLog>();
+    let cut_short = log
+        .records
+        .last()
+        .is_some_and(|r| r.reason == StageEndReason::SceneEnd);
+    if cut_short && !clock.finished() {
+        log.records.pop();
+        log.warnings.pop();
+        progress.finished = false;
+    } else {
+        world.resource_mut::<Clock>().end = clock.time;
     }
-    world.insert_resource(plan);
 }
 
 /// Makes the blocks present those of the checkpoint (stages may have added
@@ -369,35 +367,34 @@ fn restore_blocks(
     blocks: Vec<BlockState>,
     bodies: &[Entity],
 ) -> Result<(), String> {
-    let present: Vec<(Entity, u32)> = world
-        .query::<(Entity, &BlockId)>()
-        .iter(world)
-        .map(|(e, id)| (e, id.index))
-        .collect();
-    for &(entity, index) in &present {
+    let present = |world: &mut World| -> Vec<(Entity, u32)> {
+        world
+            .query::<(Entity, &BlockId)>()
+            .iter(world)
+            .map(|(e, id)| (e, id.index))
+            .collect()
+    };
+    for (entity, index) in present(world) {
         if !blocks.iter().any(|b| b.index == index) {
             world.despawn(entity);
         }
     }
-    for block in blocks {
+    let spawned = present(world);
+    for block in &blocks {
         let index = block.index as usize;
         if index >= scene.blocks.len() {
             return Err(format!("it has a block {index} the scene does not"));
         }
-        let entity = match present.iter().find(|(_, i)| *i == block.index) {
-            Some((entity, _)) => *entity,
-            None => {
-                spawn_block(scene, index, world, bodies).map_err(|e| e.to_string())?;
-                world
-                    .query::<(Entity, &BlockId)>()
-                    .iter(world)
-                    .find(|(_, id)| id.index == block.index)
-                    .map(|(e, _)| e)
-                    .ok_or_else(|| format!("block {index} could not be spawned"))?
-            }
+        if !spawned.iter().any(|(_, i)| *i == block.index) {
+            spawn_block(scene, index, world, bodies).map_err(|e| e.to_string())?;
+        }
+    }
+    let present = present(world);
+    for block in blocks {
+        let Some(&(entity, _)) = present.iter().find(|(_, i)| *i == block.index) else {
+            return Err(format!("block {} could not be spawned", block.index));
         };
-        let mut stored = world.entity_mut(entity);
-        stored.insert((
+        world.entity_mut(entity).insert((
             block.pose,
             block.velocity,
             block.motion,
