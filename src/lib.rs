@@ -32,6 +32,7 @@ pub mod scene;
 pub mod shape_functions;
 mod simulation;
 pub mod transfer;
+pub mod verify;
 
 #[path = "../systems/mod.rs"]
 pub mod systems;

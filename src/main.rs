@@ -1,11 +1,13 @@
-//! The `mpdem` command line: run, check and benchmark scenes.
+//! The `mpdem` command line: run, check and benchmark scenes, and verify
+//! the engine against the paper's validation cases.
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use mpdem::io::RunOutput;
 use mpdem::resources::StageLog;
 use mpdem::scene::Scene;
-use mpdem::{Simulation, bench};
+use mpdem::verify::{CASES, CaseReport, Context, RunEvent, Verdict};
+use mpdem::{Simulation, bench, verify};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -66,6 +68,29 @@ enum Command {
         #[arg(long, default_value_t = 5)]
         warmup: u64,
     },
+    /// Run the paper's validation cases at full size and measure each
+    /// against its target (the table is also written to OUT/verify.csv).
+    /// Exits with failure if a target is missed. All cases take about 40
+    /// minutes on 2 cores.
+    Verify {
+        /// Cases to run, by name [default: all]; see --list.
+        cases: Vec<String>,
+        /// List the cases with their cost and stop.
+        #[arg(long)]
+        list: bool,
+        /// Folder of the scene files.
+        #[arg(long, default_value = "scenes")]
+        scenes: PathBuf,
+        /// Output folder for verify.csv and the cases' plots.
+        #[arg(long, default_value = "out/verify")]
+        out: PathBuf,
+        /// Worker threads [default: all cores]. Results do not depend on it.
+        #[arg(long)]
+        threads: Option<usize>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
 }
 
 fn main() -> ExitCode {
@@ -96,6 +121,21 @@ fn main() -> ExitCode {
             Some(path) => bench_scene(&path, warmup, steps),
             None => run_bench(points, warmup, steps),
         }),
+        Command::Verify {
+            cases,
+            list,
+            scenes,
+            out,
+            threads,
+            quiet,
+        } => {
+            if list {
+                list_cases();
+                Ok(())
+            } else {
+                with_threads(threads, || verify(&cases, &scenes, &out, quiet))
+            }
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -315,5 +355,94 @@ fn run_bench(points: usize, warmup: u64, steps: u64) -> Result<(), String> {
         "contact adds {:+.1}% to the step",
         100.0 * (rates[1] / rates[0] - 1.0)
     );
+    Ok(())
+}
+
+fn list_cases() {
+    for case in CASES {
+        println!(
+            "{:<18} {:<16} ~{:>4.1} min  {}",
+            case.name, case.source, case.minutes, case.about
+        );
+    }
+}
+
+fn verify(names: &[String], scenes: &Path, out: &Path, quiet: bool) -> Result<(), String> {
+    let cases = if names.is_empty() {
+        CASES.iter().collect()
+    } else {
+        names
+            .iter()
+            .map(|name| {
+                verify::case(name).ok_or_else(|| {
+                    let known: Vec<&str> = CASES.iter().map(|c| c.name).collect();
+                    format!("no case '{name}'; the cases are {}", known.join(", "))
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?
+    };
+    if !scenes.is_dir() {
+        return Err(format!(
+            "no scenes folder at {}: run from the repository's root or pass --scenes",
+            scenes.display()
+        ));
+    }
+    let table = out.join("verify.csv");
+    let progress = progress_bar(0, quiet);
+    let observe = |event: RunEvent| match event {
+        RunEvent::Started { run, steps } => {
+            progress.set_length(steps);
+            progress.set_position(0);
+            progress.reset_eta();
+            progress.set_message(run.to_string());
+        }
+        RunEvent::Stepped { step, .. } => progress.set_position(step),
+    };
+    let ctx = Context::new(scenes, out, &observe);
+    let mut reports = Vec::new();
+    for case in cases {
+        let minutes = case.minutes;
+        eprintln!(
+            "{} ({}): {}, about {minutes} min",
+            case.name, case.source, case.about
+        );
+        let report = CaseReport::run(case, &ctx);
+        progress.finish_and_clear();
+        print!("{report}");
+        reports.push(report);
+        verify::write_table(&table, &reports)
+            .map_err(|e| format!("{}: cannot write the table: {e}", table.display()))?;
+    }
+    let count = |verdict| {
+        reports
+            .iter()
+            .flat_map(|r| r.checks())
+            .filter(|c| c.verdict == verdict)
+            .count()
+    };
+    let failed: Vec<&str> = reports
+        .iter()
+        .filter(|r| r.outcome.is_err())
+        .map(|r| r.case)
+        .collect();
+    let missed = count(Verdict::Missed);
+    println!(
+        "verify: {} cases; {} checks met, {missed} missed, {} reported; {} cases could not be measured; table in {}",
+        reports.len(),
+        count(Verdict::Met),
+        count(Verdict::Reported),
+        failed.len(),
+        table.display()
+    );
+    if missed > 0 || !failed.is_empty() {
+        return Err(format!(
+            "{missed} checks missed their target{}",
+            if failed.is_empty() {
+                String::new()
+            } else {
+                format!("; these cases failed: {}", failed.join(", "))
+            }
+        ));
+    }
     Ok(())
 }

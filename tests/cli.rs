@@ -1,4 +1,5 @@
-//! `mpdem run` writes every output; `mpdem check` validates.
+//! `mpdem run` writes every output; `mpdem check` validates; `mpdem
+//! verify` tabulates its cases.
 
 mod common;
 
@@ -174,4 +175,71 @@ fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outp
         stderr.contains("--checkpoint-every must be a positive time"),
         "{stderr}"
     );
+}
+
+#[test]
+fn verify_tabulates_a_case_and_fails_when_a_target_is_missed() {
+    let listed = mpdem(&["verify", "--list"]);
+    let listing = String::from_utf8_lossy(&listed.stdout);
+    for case in mpdem::verify::CASES {
+        assert!(listing.contains(case.name), "{listing}");
+    }
+
+    // The wave case on the shipped scenes: met, and tabulated.
+    let base = std::env::temp_dir().join(format!("mpdem-verify-{}", std::process::id()));
+    std::fs::create_dir_all(&base).expect("temporary folder");
+    let out = base.join("out");
+    let scenes = common::scene_path("");
+    let args = |scenes: &str| {
+        [
+            "verify",
+            "wave_1d",
+            "--quiet",
+            "--scenes",
+            scenes,
+            "--out",
+            out.to_str().unwrap(),
+        ]
+        .map(String::from)
+    };
+    let met = Command::new(env!("CARGO_BIN_EXE_mpdem"))
+        .args(args(scenes.to_str().unwrap()))
+        .output()
+        .expect("mpdem runs");
+    let stdout = String::from_utf8_lossy(&met.stdout);
+    assert!(met.status.success(), "{stdout}");
+    assert!(stdout.contains("2 checks met, 0 missed"), "{stdout}");
+    let table = std::fs::read_to_string(out.join("verify.csv")).expect("verify.csv");
+    assert_eq!(table.lines().count(), 3, "{table}");
+    assert!(
+        table
+            .lines()
+            .all(|l| l.ends_with("\"met\"") || l.starts_with("case,"))
+    );
+
+    // Twice the initial velocity the exact solution assumes: the midpoint
+    // error is 100%, the case misses its target and the command fails.
+    std::fs::write(
+        base.join("wave_1d.ron"),
+        std::fs::read_to_string(common::scene_path("wave_1d.ron"))
+            .unwrap()
+            .replacen("x*(1-x)", "2*x*(1-x)", 1),
+    )
+    .unwrap();
+    let missed = Command::new(env!("CARGO_BIN_EXE_mpdem"))
+        .args(args(base.to_str().unwrap()))
+        .output()
+        .expect("mpdem runs");
+    let stdout = String::from_utf8_lossy(&missed.stdout);
+    assert!(!missed.status.success(), "{stdout}");
+    assert!(stdout.contains("MISSED"), "{stdout}");
+    assert!(
+        String::from_utf8_lossy(&missed.stderr).contains("checks missed their target"),
+        "{}",
+        String::from_utf8_lossy(&missed.stderr)
+    );
+
+    let unknown = mpdem(&["verify", "no_such_case"]);
+    assert!(!unknown.status.success());
+    assert!(String::from_utf8_lossy(&unknown.stderr).contains("no case 'no_such_case'"));
 }

@@ -3,81 +3,21 @@
 
 mod common;
 
-use common::{load_scene, probe_samples, run_scene};
+use common::{load_scene, run_scene, verify_case};
 use mpdem::prelude::*;
-use mpdem::scene::{InitialVelocity, Shape};
+use mpdem::scene::InitialVelocity;
+use mpdem::verify::wave::scaled;
 
-/// Wave speed of the bar, sqrt(E / ρ) (m/s).
-const C: Real = 10.0;
-
-/// Exact velocity of the bar at material coordinate x and time t for
-/// v0 = a x (1 − x): half the sum of the odd, 2-periodic extension of v0
-/// shifted by ±ct.
-fn exact_velocity(a: Real, x: Real, t: Real) -> Real {
-    fn extended(s: Real) -> Real {
-        let s = s.rem_euclid(2.0);
-        if s > 1.0 {
-            -extended(2.0 - s)
-        } else {
-            s * (1.0 - s)
-        }
-    }
-    a * 0.5 * (extended(x - C * t) + extended(x + C * t))
-}
-
-/// Largest |v − v_exact| of the midpoint probe over the run, as a fraction
-/// of the peak velocity 0.25 a.
+/// Largest |v − v_exact| of the midpoint probe as a fraction of 0.25 a.
 fn midpoint_error(sim: &Simulation, a: Real) -> Real {
-    let samples = probe_samples(sim, "midpoint");
-    let x0 = samples[0].position.x;
-    let worst = samples
-        .iter()
-        .map(|s| (s.velocity.x - exact_velocity(a, x0, s.time)).abs())
-        .fold(0.0, Real::max);
-    worst / (0.25 * a)
-}
-
-/// The wave scene with its cell size multiplied by `factor` (cells, bar
-/// height and probe follow).
-fn scaled(mut scene: Scene, factor: Real) -> Scene {
-    let h = scene.grid.cell_size * factor;
-    scene.grid.cell_size = h;
-    scene.grid.cells = ((1.0 / h).round() as usize, 2);
-    scene.bodies[0].shape = Shape::Rectangle {
-        min: DVec2::ZERO,
-        max: DVec2::new(1.0, 2.0 * h),
-    };
-    scene.probes[0].at = DVec2::new(0.5, h);
-    scene
+    mpdem::verify::wave::midpoint_error(sim, a).unwrap_or_else(|e| panic!("{e}"))
 }
 
 #[test]
-fn midpoint_velocity_matches_the_exact_solution_at_the_scene_resolution() {
-    let sim = run_scene(&load_scene("wave_1d.ron"));
-    let error = midpoint_error(&sim, 1.0);
-    println!(
-        "wave_1d (200 cells, USL): max error {:.3}% of 0.25",
-        100.0 * error
-    );
-    // Target of the issue: 2% of 0.25 over five periods. Measured 1.85%; the
-    // floor is the finite-strain response (strains of 2.5%) against the
-    // linear exact solution, see scenes/wave_1d.ron.
-    assert!(error <= 0.02, "error {:.3}% above 2%", 100.0 * error);
-}
-
-#[test]
-fn error_shrinks_when_the_resolution_doubles() {
-    let fine = midpoint_error(&run_scene(&load_scene("wave_1d.ron")), 1.0);
-    let coarse = midpoint_error(&run_scene(&scaled(load_scene("wave_1d.ron"), 2.0)), 1.0);
-    println!(
-        "wave_1d: 100 cells {:.3}%, 200 cells {:.3}%",
-        100.0 * coarse,
-        100.0 * fine
-    );
-    assert!(
-        fine < coarse,
-        "200 cells {fine} not better than 100 cells {coarse}"
-    );
+fn midpoint_velocity_matches_the_exact_solution_and_converges() {
+    // The scene (200 cells) within 2% of 0.25 over five periods, and
+    // better than at 100 cells: see mpdem::verify::wave.
+    verify_case("wave_1d");
 }
 
 /// At 1% of the paper's amplitude the run is geometrically linear and the

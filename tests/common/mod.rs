@@ -34,13 +34,21 @@ pub fn refusal(scene: &Scene) -> String {
 
 /// The samples of the probe named `name`.
 pub fn probe_samples(sim: &Simulation, name: &str) -> Vec<mpdem::resources::ProbeSample> {
-    let probes = sim.world().resource::<Probes>();
-    let index = probes
-        .probes
-        .iter()
-        .position(|p| p.name == name)
-        .expect("probe exists");
-    probes.series(index).copied().collect()
+    mpdem::verify::probe_samples(sim, name).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Runs the `mpdem verify` case `name` on the scenes of `scenes/` (plots go
+/// to `out/verify/`), prints its report and asserts that it was measured
+/// and that no check missed its target.
+pub fn verify_case(name: &str) -> mpdem::verify::CaseReport {
+    let case = mpdem::verify::case(name).expect("a verify case");
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let quiet = |_: mpdem::verify::RunEvent| {};
+    let ctx = mpdem::verify::Context::new(&root.join("scenes"), &root.join("out/verify"), &quiet);
+    let report = mpdem::verify::CaseReport::run(case, &ctx);
+    print!("{report}");
+    assert!(report.all_met(), "{name}: a target is missed, see above");
+    report
 }
 
 /// Runs `f` on a rayon pool of `threads` workers.
@@ -62,43 +70,4 @@ pub fn edited_wave_scene(tag: &str, from: &str, to: &str) -> (PathBuf, PathBuf) 
     let scene = base.join(format!("{tag}.ron"));
     std::fs::write(&scene, text.replacen(from, to, 1)).expect("scene written");
     (base, scene)
-}
-
-/// The mass-weighted mean of a column of a body's points (e.g. positions:
-/// the centre of mass).
-pub fn mass_weighted_mean(points: &MaterialPoints, column: &[DVec2]) -> DVec2 {
-    points
-        .mass
-        .iter()
-        .zip(column)
-        .map(|(m, x)| *m * *x)
-        .sum::<DVec2>()
-        / points.total_mass()
-}
-
-/// Motion of a body's centre of mass: (displacement, velocity).
-pub fn centre_of_mass_motion(points: &MaterialPoints) -> (DVec2, DVec2) {
-    let mean = |column: &[DVec2]| mass_weighted_mean(points, column);
-    (
-        mean(&points.position) - mean(&points.initial_position),
-        mean(&points.velocity),
-    )
-}
-
-/// The mean σ_yy of a body's lowest row of points (within 1 µm of the
-/// lowest), e.g. the base stress of a soil column.
-pub fn base_stress(points: &MaterialPoints) -> Real {
-    let lowest = points
-        .position
-        .iter()
-        .map(|x| x.y)
-        .fold(Real::INFINITY, Real::min);
-    let base: Vec<Real> = points
-        .position
-        .iter()
-        .zip(&points.stress)
-        .filter(|(x, _)| x.y < lowest + 1e-6)
-        .map(|(_, s)| s.yy)
-        .collect();
-    base.iter().sum::<Real>() / base.len() as Real
 }

@@ -1,0 +1,157 @@
+//! Paper section 4.3: a rigid pile with a cone tip driven at 0.1 m/s into
+//! Mohr–Coulomb sand after a geostatic stage and a 150 kPa surcharge; the
+//! cone resistance q_c = f_c / R against z / R.
+
+use super::{Check, Context, VerifyError};
+use crate::Simulation;
+use crate::io::csv::write_curve;
+use crate::io::plot::{Series, SeriesStyle, plot_series};
+use crate::math::Real;
+use crate::resources::{BlockLog, StageEndReason, StageLog};
+use std::path::Path;
+
+/// Radius of the scene's pile (m).
+pub const RADIUS: Real = 0.4;
+
+/// (time, z / R, q_c = f_c / R) for every block sample of the penetration
+/// (third) stage: f_c the vertical reaction on the cone (the pile's part 1)
+/// of the half model, z the pile's travel since the stage began.
+pub fn cone_resistance(
+    sim: &Simulation,
+    radius: Real,
+) -> Result<Vec<(Real, Real, Real)>, VerifyError> {
+    let world = sim.world();
+    let log = world.resource::<BlockLog>();
+    let start = world
+        .resource::<StageLog>()
+        .records
+        .get(1)
+        .ok_or_else(|| VerifyError::Measurement("the surcharge stage never ended".into()))?
+        .end;
+    let origin = log
+        .samples
+        .iter()
+        .find(|s| s.time >= start)
+        .ok_or_else(|| VerifyError::Measurement("no sample of the penetration stage".into()))?
+        .origin;
+    Ok(log
+        .samples
+        .iter()
+        .filter(|s| s.time >= start)
+        .filter_map(|s| {
+            let cone = log.parts.iter().find(|p| p.time == s.time && p.part == 1)?;
+            Some((
+                s.time,
+                (origin.y - s.origin.y) / radius,
+                cone.force.y / radius,
+            ))
+        })
+        .collect())
+}
+
+/// Mean q_c of the samples with `from ≤ z/R < to`, if any.
+pub fn mean_between(curve: &[(Real, Real, Real)], from: Real, to: Real) -> Option<Real> {
+    let inside: Vec<Real> = curve
+        .iter()
+        .filter(|(_, z, _)| (from..to).contains(z))
+        .map(|(_, _, q)| *q)
+        .collect();
+    (!inside.is_empty()).then(|| inside.iter().sum::<Real>() / inside.len() as Real)
+}
+
+/// The published plateau, 4–6 MPa (Susila and Hryciw: about 5 MPa).
+const PLATEAU: (Real, Real) = (4e6, 6e6);
+
+/// The full scene (about 16 minutes on 2 cores); q_c is written to
+/// `OUT/pile_penetration/qc.csv` and plotted to `qc.png`.
+pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
+    let scene = ctx.scene("pile_penetration.ron")?;
+    let sim = ctx.run("pile_penetration", &scene)?;
+    let curve = cone_resistance(&sim, RADIUS)?;
+    let dir = ctx.out_dir("pile_penetration")?;
+    write_curve(&dir.join("qc.csv"), &curve).map_err(|source| VerifyError::Io {
+        path: dir.join("qc.csv"),
+        source,
+    })?;
+    plot(&dir.join("qc.png"), &curve)?;
+
+    let reasons: Vec<StageEndReason> = sim
+        .world()
+        .resource::<StageLog>()
+        .records
+        .iter()
+        .map(|r| r.reason)
+        .collect();
+    let depth = curve.last().map_or(0.0, |c| c.1);
+    let planned = [
+        StageEndReason::Condition,
+        StageEndReason::Condition,
+        StageEndReason::Duration,
+    ];
+    let mut checks = vec![Check::judged(
+        "stages: geostatic and surcharge settle, the pile is driven to 9R",
+        format!("{reasons:?}, z/R = {depth:.2} at the end"),
+        "[Condition, Condition, Duration], z/R ≥ 8.9",
+        reasons == planned && depth >= 8.9,
+    )];
+    let plateau = mean_between(&curve, 6.0, Real::INFINITY).unwrap_or(Real::NAN);
+    checks.push(Check::judged(
+        "mean q_c = f_c / R over z/R ≥ 6 (f_c on the half model's cone)",
+        format!("{:.2} MPa", plateau / 1e6),
+        "4–6 MPa (Susila and Hryciw: about 5 MPa)",
+        (PLATEAU.0..=PLATEAU.1).contains(&plateau),
+    ));
+    let profile: Vec<String> = (1..=8)
+        .map(|z| {
+            let z = Real::from(z);
+            mean_between(&curve, z - 0.25, z + 0.25)
+                .map_or_else(|| "–".into(), |q| format!("{:.2}", q / 1e6))
+        })
+        .collect();
+    checks.push(Check::reported(
+        "q_c (MPa) at z/R = 1, 2, …, 8 (mean over ±0.25)",
+        profile.join(" / "),
+        "a plateau of about 5 MPa from z/R ≈ 3 (paper Fig. 16)",
+    ));
+    checks.push(Check::reported(
+        "the same over z/R ≥ 6 read as the whole cone's 2 f_c / R",
+        format!("{:.2} MPa", 2.0 * plateau / 1e6),
+        "4–6 MPa, if the paper's f_c is the whole cone's",
+    ));
+    Ok(checks)
+}
+
+/// q_c against z / R with the published band.
+fn plot(path: &Path, curve: &[(Real, Real, Real)]) -> Result<(), VerifyError> {
+    let measured: Vec<(Real, Real)> = curve.iter().map(|&(_, z, q)| (z, q)).collect();
+    let end = measured.last().map_or(9.0, |p| p.0);
+    let low = [(0.0, PLATEAU.0), (end, PLATEAU.0)];
+    let high = [(0.0, PLATEAU.1), (end, PLATEAU.1)];
+    plot_series(
+        path,
+        "Cone resistance, pile penetration",
+        "z / R",
+        "q_c = f_c / R (Pa)",
+        &[
+            Series {
+                name: "mpdem, half model",
+                points: &measured,
+                style: SeriesStyle::Line,
+            },
+            Series {
+                name: "published plateau, 4 and 6 MPa",
+                points: &low,
+                style: SeriesStyle::Line,
+            },
+            Series {
+                name: "",
+                points: &high,
+                style: SeriesStyle::Line,
+            },
+        ],
+    )
+    .map_err(|source| VerifyError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}

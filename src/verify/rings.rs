@@ -1,0 +1,117 @@
+//! Paper section 4.4.1: two Neo-Hookean rings colliding at ±30 m/s, on
+//! separate grid layers, meeting only through the disk–disk DEM contact.
+
+use super::{Check, Context, VerifyError, body, mass_weighted_mean, percent};
+use crate::Simulation;
+use crate::math::{DVec2, Real};
+use crate::resources::{EnergyLog, EnergySample};
+
+/// Outer radius of the scene's rings (m).
+const OUTER_RADIUS: Real = 0.04;
+
+/// Centre of mass of a body and its velocity.
+pub fn centre(sim: &mut Simulation, name: &str) -> Result<(DVec2, DVec2), VerifyError> {
+    let points = body(sim, name)?;
+    Ok((
+        mass_weighted_mean(points, &points.position),
+        mass_weighted_mean(points, &points.velocity),
+    ))
+}
+
+/// Largest distance of a body's points from its centre of mass.
+pub fn reach(sim: &mut Simulation, name: &str) -> Result<Real, VerifyError> {
+    let (c, _) = centre(sim, name)?;
+    Ok(body(sim, name)?
+        .position
+        .iter()
+        .map(|x| x.distance(c))
+        .fold(0.0, Real::max))
+}
+
+/// The energies a run recorded.
+pub fn energy_samples(sim: &Simulation) -> &[EnergySample] {
+    &sim.world().resource::<EnergyLog>().samples
+}
+
+/// Relative change of kinetic + strain + contact energy over a run.
+pub fn energy_drift(sim: &Simulation) -> Real {
+    let samples = energy_samples(sim);
+    let (first, last) = (samples[0].total(), samples[samples.len() - 1].total());
+    last / first - 1.0
+}
+
+/// The largest relative departure of the energy balance (total plus what
+/// the contacts dissipated) from its start.
+pub fn widest_balance_swing(samples: &[EnergySample]) -> Real {
+    let start = samples[0].balance();
+    samples
+        .iter()
+        .map(|s| (s.balance() / start - 1.0).abs())
+        .fold(0.0, Real::max)
+}
+
+/// The scene to its end (3.8 ms).
+pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
+    let scene = ctx.scene("two_rings.ron")?;
+    let mut sim = ctx.run("two_rings", &scene)?;
+    let (_, v_left) = centre(&mut sim, "left")?;
+    let (_, v_right) = centre(&mut sim, "right")?;
+    let reaches = [reach(&mut sim, "left")?, reach(&mut sim, "right")?];
+    let samples = energy_samples(&sim);
+    let (first, last) = (samples[0], samples[samples.len() - 1]);
+    let drift = energy_drift(&sim);
+    let balance_drift = last.balance() / first.balance() - 1.0;
+    let widest = widest_balance_swing(samples);
+    let farthest = reaches[0].max(reaches[1]);
+    Ok(vec![
+        // Rebound: the relative velocity of the centres has reversed.
+        Check::judged(
+            "centre velocities at the end (they met at +30 / −30 m/s)",
+            format!("{:+.2} / {:+.2} m/s", v_left.x, v_right.x),
+            "relative velocity reversed",
+            v_left.x - v_right.x < 0.0,
+        ),
+        // No fragmentation: every point stays within 1.25 outer radii of
+        // its ring's centre (the rebounding rings still ring; a point torn
+        // off would be carried away at tens of m/s).
+        Check::judged(
+            "farthest point from its ring's centre",
+            format!("{:.2} mm", 1e3 * farthest),
+            format!("< 1.25 × {:.0} mm", 1e3 * OUTER_RADIUS),
+            farthest < 1.25 * OUTER_RADIUS,
+        ),
+        // The target (measured −1.0%, of which 1.7% taken by
+        // friction; −7.2% with disks that only reach the outline).
+        Check::judged(
+            "drift of kinetic + strain + contact energy over the run",
+            percent(drift, 2),
+            "within 5%",
+            drift.abs() <= 0.05,
+        ),
+        // What the contacts' tangential forces took and their springs do
+        // not hold closes the balance up to the scheme's own error,
+        // measured +0.7% at every sample; held to 2% as for a ring on a
+        // wall (a work of the wrong sign would leave −2.7%).
+        Check::judged(
+            "energy balance (total + dissipated by the contacts) at the end",
+            percent(balance_drift, 2),
+            "within 2%",
+            balance_drift.abs() <= 0.02,
+        ),
+        Check::judged(
+            "energy balance, widest swing over the run (through the impact)",
+            format!("{:.2}%", 100.0 * widest),
+            "within 2%",
+            widest <= 0.02,
+        ),
+        Check::reported(
+            "energy the contacts dissipated",
+            format!(
+                "{:.1} J/m ({:.2}% of the start)",
+                last.dissipated,
+                100.0 * last.dissipated / first.total()
+            ),
+            "μ = 0.2 friction",
+        ),
+    ])
+}
