@@ -391,12 +391,13 @@ fn verify(names: &[String], scenes: &Path, out: &Path, quiet: bool) -> Result<()
     let progress = progress_bar(0, quiet);
     let observe = |event: RunEvent| match event {
         RunEvent::Started { run, steps } => {
+            // reset() also brings back a bar finished and cleared by the
+            // previous case, and restarts its clock.
+            progress.reset();
             progress.set_length(steps);
-            progress.set_position(0);
-            progress.reset_eta();
             progress.set_message(run.to_string());
         }
-        RunEvent::Stepped { step, .. } => progress.set_position(step),
+        RunEvent::Stepped { step } => progress.set_position(step),
     };
     let ctx = Context::new(scenes, out, &observe);
     let mut reports = Vec::new();
@@ -434,15 +435,19 @@ fn verify(names: &[String], scenes: &Path, out: &Path, quiet: bool) -> Result<()
         failed.len(),
         table.display()
     );
-    if missed > 0 || !failed.is_empty() {
-        return Err(format!(
-            "{missed} checks missed their target{}",
-            if failed.is_empty() {
-                String::new()
-            } else {
-                format!("; these cases failed: {}", failed.join(", "))
-            }
+    let mut problems = Vec::new();
+    if missed > 0 {
+        problems.push(format!("{missed} checks missed their target"));
+    }
+    if !failed.is_empty() {
+        problems.push(format!(
+            "these cases could not be run: {}",
+            failed.join(", ")
         ));
     }
-    Ok(())
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(problems.join("; "))
+    }
 }

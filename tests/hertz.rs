@@ -48,7 +48,7 @@ fn coarse_disks_carry_the_applied_load_along_the_line_of_centres() {
 }
 
 #[test]
-#[ignore = "seven runs, 5 minutes; fails today: the error does not fall monotonically with resolution"]
+#[ignore = "seven runs, 7 minutes; fails today: the error does not fall monotonically with resolution"]
 fn hertz_disks_follow_the_2d_hertz_law_and_converge() {
     // The targets: within 10% at the finest resolution, the error
     // falling with resolution, the turned pair within 5% of the unturned;

@@ -62,7 +62,7 @@ pub fn mean_between(curve: &[(Real, Real, Real)], from: Real, to: Real) -> Optio
 /// The published plateau, 4–6 MPa (Susila and Hryciw: about 5 MPa).
 const PLATEAU: (Real, Real) = (4e6, 6e6);
 
-/// The full scene (about 16 minutes on 2 cores); q_c is written to
+/// The full scene (about 8 minutes on 2 cores); q_c is written to
 /// `OUT/pile_penetration/qc.csv` and plotted to `qc.png`.
 pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
     let scene = ctx.scene("pile_penetration.ron")?;

@@ -1,7 +1,7 @@
 //! Paper section 4.4.1: two Neo-Hookean rings colliding at ±30 m/s, on
 //! separate grid layers, meeting only through the disk–disk DEM contact.
 
-use super::{Check, Context, VerifyError, body, mass_weighted_mean, percent};
+use super::{Check, Context, VerifyError, body, first, largest, mass_weighted_mean, percent};
 use crate::Simulation;
 use crate::math::{DVec2, Real};
 use crate::resources::{EnergyLog, EnergySample};
@@ -21,11 +21,9 @@ pub fn centre(sim: &mut Simulation, name: &str) -> Result<(DVec2, DVec2), Verify
 /// Largest distance of a body's points from its centre of mass.
 pub fn reach(sim: &mut Simulation, name: &str) -> Result<Real, VerifyError> {
     let (c, _) = centre(sim, name)?;
-    Ok(body(sim, name)?
-        .position
-        .iter()
-        .map(|x| x.distance(c))
-        .fold(0.0, Real::max))
+    Ok(largest(
+        body(sim, name)?.position.iter().map(|x| x.distance(c)),
+    ))
 }
 
 /// The energies a run recorded.
@@ -33,21 +31,28 @@ pub fn energy_samples(sim: &Simulation) -> &[EnergySample] {
     &sim.world().resource::<EnergyLog>().samples
 }
 
-/// Relative change of kinetic + strain + contact energy over a run.
-pub fn energy_drift(sim: &Simulation) -> Real {
+/// The first and last energy samples of a run.
+pub fn first_and_last(sim: &Simulation) -> Result<(EnergySample, EnergySample), VerifyError> {
     let samples = energy_samples(sim);
-    let (first, last) = (samples[0].total(), samples[samples.len() - 1].total());
-    last / first - 1.0
+    let start = *first(samples, "energy samples")?;
+    Ok((start, *samples.last().unwrap_or(&start)))
+}
+
+/// Relative change of kinetic + strain + contact energy over a run (NaN
+/// if it recorded no energy).
+pub fn energy_drift(sim: &Simulation) -> Real {
+    first_and_last(sim).map_or(Real::NAN, |(first, last)| {
+        last.total() / first.total() - 1.0
+    })
 }
 
 /// The largest relative departure of the energy balance (total plus what
-/// the contacts dissipated) from its start.
+/// the contacts dissipated) from its start (NaN for no samples).
 pub fn widest_balance_swing(samples: &[EnergySample]) -> Real {
-    let start = samples[0].balance();
-    samples
-        .iter()
-        .map(|s| (s.balance() / start - 1.0).abs())
-        .fold(0.0, Real::max)
+    let Some(start) = samples.first().map(EnergySample::balance) else {
+        return Real::NAN;
+    };
+    largest(samples.iter().map(|s| (s.balance() / start - 1.0).abs()))
 }
 
 /// The scene to its end (3.8 ms).
@@ -57,12 +62,11 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
     let (_, v_left) = centre(&mut sim, "left")?;
     let (_, v_right) = centre(&mut sim, "right")?;
     let reaches = [reach(&mut sim, "left")?, reach(&mut sim, "right")?];
-    let samples = energy_samples(&sim);
-    let (first, last) = (samples[0], samples[samples.len() - 1]);
-    let drift = energy_drift(&sim);
+    let (first, last) = first_and_last(&sim)?;
+    let drift = last.total() / first.total() - 1.0;
     let balance_drift = last.balance() / first.balance() - 1.0;
-    let widest = widest_balance_swing(samples);
-    let farthest = reaches[0].max(reaches[1]);
+    let widest = widest_balance_swing(energy_samples(&sim));
+    let farthest = largest(reaches);
     Ok(vec![
         // Rebound: the relative velocity of the centres has reversed.
         Check::judged(

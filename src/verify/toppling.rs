@@ -5,9 +5,9 @@
 //! outline the slope touches is the block with its corners rounded to the
 //! disk radius r. Its exact motion (rigid, no slip, the corner arc rolling)
 //! is what the engine must reproduce; with r = 0 it is the sharp-corner
-//! pendulum of the paper, φ'' = (3g/(4L)) sin φ.
+//! pendulum of the issue, φ'' = (3g/(4L)) sin φ.
 
-use super::{Check, Context, VerifyError, percent, probe_samples};
+use super::{Check, Context, VerifyError, first, percent, probe_samples};
 use crate::Simulation;
 use crate::math::{DVec2, Real};
 
@@ -73,13 +73,14 @@ pub fn rocking_block(w: Real, h: Real, r: Real, slope_deg: Real, times: &[Real])
 pub fn simulated_rotation(sim: &Simulation, times: &[Real]) -> Result<Vec<Real>, VerifyError> {
     let top = probe_samples(sim, "top")?;
     let bottom = probe_samples(sim, "bottom")?;
-    let axis0 = top[0].position - bottom[0].position;
+    let axis0 = first(&top, "top samples")?.position - first(&bottom, "bottom samples")?.position;
     times
         .iter()
         .map(|&t| {
             let k = top
                 .iter()
                 .position(|s| (s.time - t).abs() < 1e-9)
+                .filter(|&k| k < bottom.len())
                 .ok_or_else(|| VerifyError::Measurement(format!("no probe sample at {t} s")))?;
             let axis = top[k].position - bottom[k].position;
             // Toppling downhill (+x) turns the axis clockwise.

@@ -1,7 +1,7 @@
 //! Paper section 4.1: an elastic wave in a bar fixed at both ends, against
 //! the exact (d'Alembert) solution.
 
-use super::{Check, Context, VerifyError, probe_samples};
+use super::{Check, Context, VerifyError, first, largest, probe_samples};
 use crate::Simulation;
 use crate::math::{DVec2, Real};
 use crate::scene::{Scene, Shape};
@@ -28,16 +28,17 @@ pub fn exact_velocity(a: Real, x: Real, t: Real) -> Real {
 /// of the peak velocity 0.25 a.
 pub fn midpoint_error(sim: &Simulation, a: Real) -> Result<Real, VerifyError> {
     let samples = probe_samples(sim, "midpoint")?;
-    let x0 = samples[0].position.x;
-    let worst = samples
-        .iter()
-        .map(|s| (s.velocity.x - exact_velocity(a, x0, s.time)).abs())
-        .fold(0.0, Real::max);
+    let x0 = first(&samples, "midpoint samples")?.position.x;
+    let worst = largest(
+        samples
+            .iter()
+            .map(|s| (s.velocity.x - exact_velocity(a, x0, s.time)).abs()),
+    );
     Ok(worst / (0.25 * a))
 }
 
 /// The wave scene with its cell size multiplied by `factor` (cells, bar
-/// height and probe follow).
+/// height and probe follow). Panics if the scene has no body or no probe.
 pub fn scaled(mut scene: Scene, factor: Real) -> Scene {
     let h = scene.grid.cell_size * factor;
     scene.grid.cell_size = h;
@@ -53,6 +54,11 @@ pub fn scaled(mut scene: Scene, factor: Real) -> Scene {
 /// The scene (200 cells) and the same at 100 cells.
 pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
     let scene = ctx.scene("wave_1d.ron")?;
+    if scene.bodies.is_empty() || scene.probes.is_empty() {
+        return Err(VerifyError::Measurement(
+            "wave_1d.ron needs its bar and its midpoint probe".into(),
+        ));
+    }
     let fine = midpoint_error(&ctx.run("wave_1d, 200 cells", &scene)?, 1.0)?;
     let coarse = midpoint_error(&ctx.run("wave_1d, 100 cells", &scaled(scene, 2.0))?, 1.0)?;
     Ok(vec![
