@@ -6,6 +6,7 @@ use crate::components::{
 use crate::io::checkpoint::{
     CheckpointError, restore_checkpoint, scene_fingerprint, write_checkpoint,
 };
+use crate::io::kept_resources::KeptResources;
 use crate::io::state_hash::StateHasher;
 use crate::math::Real;
 use crate::resources::{Clock, Diagnostics, NumericalFailure};
@@ -13,6 +14,8 @@ use crate::scene::{Scene, SceneError, spawn_scene};
 use crate::systems::build_schedule;
 use bevy_ecs::prelude::*;
 use bevy_ecs::system::ScheduleSystem;
+use serde::Serialize;
+use serde::de::DeserializeOwned;
 use std::path::Path;
 
 /// Why a step could not be taken.
@@ -44,6 +47,8 @@ pub struct Simulation {
     warnings: Vec<String>,
     /// The scene's fingerprint, which a checkpoint must match.
     fingerprint: u64,
+    /// User resources that checkpoints carry.
+    kept: KeptResources,
 }
 
 impl Simulation {
@@ -63,6 +68,7 @@ impl Simulation {
             name: scene.display_name().to_owned(),
             warnings,
             fingerprint: scene_fingerprint(scene),
+            kept: KeptResources::default(),
         })
     }
 
@@ -71,16 +77,54 @@ impl Simulation {
     /// same scene (whose `time.end`, name and output may have changed since):
     /// stepping on gives bit-identically what the run that wrote it would
     /// have given. A checkpoint of another scene is refused.
+    ///
+    /// A run whose user systems keep state in resources registered with
+    /// [`Simulation::keep_in_checkpoints`] is built with
+    /// [`Simulation::from_scene`], registers them, then calls
+    /// [`Simulation::restore_checkpoint`].
     pub fn resume(scene: &Scene, path: &Path) -> Result<Self, CheckpointError> {
         let mut sim = Self::from_scene(scene)?;
-        restore_checkpoint(&mut sim.world, scene, sim.fingerprint, path)?;
+        sim.restore_checkpoint(scene, path)?;
         Ok(sim)
     }
 
+    /// Puts the state of the checkpoint at `path` into this simulation,
+    /// which must be built from `scene` and not have stepped yet; the
+    /// checkpoint must hold exactly the user resources registered with
+    /// [`Simulation::keep_in_checkpoints`]. See [`Simulation::resume`].
+    pub fn restore_checkpoint(
+        &mut self,
+        scene: &Scene,
+        path: &Path,
+    ) -> Result<(), CheckpointError> {
+        let refuse = |detail: &str| CheckpointError::Restore {
+            path: path.to_path_buf(),
+            detail: detail.to_owned(),
+        };
+        if self.clock().step != 0 {
+            return Err(refuse("the simulation has already stepped"));
+        }
+        if scene_fingerprint(scene) != self.fingerprint {
+            return Err(refuse("the simulation was built from another scene"));
+        }
+        restore_checkpoint(&mut self.world, scene, self.fingerprint, &self.kept, path)
+    }
+
     /// Writes the state of the run to `path` (see [`crate::io::checkpoint`]),
-    /// replacing the file only once the new one is whole.
+    /// replacing the file only once the new one is whole. Fails if a
+    /// resource registered with [`Simulation::keep_in_checkpoints`] is
+    /// missing from the world.
     pub fn write_checkpoint(&mut self, path: &Path) -> Result<(), CheckpointError> {
-        write_checkpoint(&mut self.world, self.fingerprint, path)
+        write_checkpoint(&mut self.world, self.fingerprint, &self.kept, path)
+    }
+
+    /// Makes checkpoints carry the resource `R` that user systems keep
+    /// (e.g. a controller's integral), under `name`: without it a resumed
+    /// run would start that state afresh and differ from one that never
+    /// stopped. Register it before writing and before restoring a
+    /// checkpoint; registering a name again replaces the type.
+    pub fn keep_in_checkpoints<R: Resource + Serialize + DeserializeOwned>(&mut self, name: &str) {
+        self.kept.keep::<R>(name);
     }
 
     /// The scene's name.

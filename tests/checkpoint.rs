@@ -301,3 +301,103 @@ fn a_checkpoint_of_another_scene_or_no_checkpoint_is_refused() {
     assert!(matches!(error, CheckpointError::Io { .. }), "{error}");
     assert!(error.to_string().contains("missing.bin"), "{error}");
 }
+
+/// A user controller's state: a push on the bar that follows the integral
+/// of the bar's mean velocity, so it depends on the whole history.
+#[derive(
+    Resource, Default, Clone, Copy, PartialEq, Debug, serde::Serialize, serde::Deserialize,
+)]
+struct Controller {
+    integral: Real,
+    applied: Real,
+}
+
+/// Replaces last step's push on every point by −k ∫ v̄ dt.
+fn control(
+    mut controller: ResMut<Controller>,
+    clock: Res<Clock>,
+    mut points: Query<&mut MaterialPoints>,
+) {
+    for mut p in &mut points {
+        let mean = p.velocity.iter().map(|v| v.x).sum::<Real>() / p.len() as Real;
+        controller.integral += mean * clock.dt;
+        let push = -50.0 * controller.integral;
+        let change = push - controller.applied;
+        p.external_force.iter_mut().for_each(|f| f.x += change);
+        controller.applied = push;
+    }
+}
+
+/// The wave bar to 0.03 s (300 steps) with the controller; its user
+/// resource is kept in checkpoints when `kept`.
+fn controlled(scene: &Scene, kept: bool) -> Simulation {
+    let mut sim = build(scene);
+    sim.world_mut().init_resource::<Controller>();
+    sim.add_systems(control.in_set(MpmSystems::Boundary))
+        .unwrap_or_else(|e| panic!("{e}"));
+    if kept {
+        sim.keep_in_checkpoints::<Controller>("controller");
+    }
+    sim
+}
+
+#[test]
+fn a_user_resource_registered_for_checkpoints_resumes_bit_identically() {
+    let mut scene = common::load_scene("wave_1d.ron");
+    scene.time.end = 0.03;
+    let mut straight = controlled(&scene, true);
+    straight.run().unwrap_or_else(|e| panic!("{e}"));
+
+    let file = checkpoint_file("controller");
+    let mut first = controlled(&scene, true);
+    step_to(&mut first, 120);
+    first
+        .write_checkpoint(&file)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut resumed = controlled(&scene, true);
+    resumed
+        .restore_checkpoint(&scene, &file)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        resumed.world().resource::<Controller>(),
+        first.world().resource::<Controller>()
+    );
+    resumed.run().unwrap_or_else(|e| panic!("{e}"));
+    assert_same_run(&mut resumed, &mut straight);
+    assert_eq!(
+        resumed.world().resource::<Controller>(),
+        straight.world().resource::<Controller>()
+    );
+
+    // Without the controller's state the resumed run differs: the test can
+    // tell the two apart.
+    let unkept = checkpoint_file("controller-unkept");
+    let mut first = controlled(&scene, false);
+    step_to(&mut first, 120);
+    first
+        .write_checkpoint(&unkept)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut fresh = controlled(&scene, false);
+    fresh
+        .restore_checkpoint(&scene, &unkept)
+        .unwrap_or_else(|e| panic!("{e}"));
+    fresh.run().unwrap_or_else(|e| panic!("{e}"));
+    assert_ne!(fresh.state_hash(), straight.state_hash());
+
+    // A run that keeps what the checkpoint lacks, or the reverse, is refused.
+    for (kept, written) in [(true, &unkept), (false, &file)] {
+        let message = controlled(&scene, kept)
+            .restore_checkpoint(&scene, written)
+            .expect_err("refused")
+            .to_string();
+        assert!(message.contains("user resources"), "{message}");
+    }
+    // So is restoring into a simulation that has stepped.
+    let mut stepped = controlled(&scene, true);
+    step_to(&mut stepped, 1);
+    let message = stepped
+        .restore_checkpoint(&scene, &file)
+        .expect_err("refused")
+        .to_string();
+    assert!(message.contains("already stepped"), "{message}");
+}

@@ -12,8 +12,9 @@
 //! a checkpoint resumes only the scene it was written for: its name,
 //! `time.end` and `output` may change, nothing else. Scratch buffers and
 //! the layers' node windows are not kept: they do not change the results.
-//! State that user systems keep in their own components or resources is
-//! not kept either.
+//! Resources that user systems keep are carried once registered
+//! ([`crate::Simulation::keep_in_checkpoints`]); state in components of
+//! their own is not.
 //!
 //! The file is binary: eight magic bytes, the layout's number (`u32`,
 //! little-endian), then the state (`postcard`), every real number stored
@@ -23,6 +24,7 @@ use crate::components::{
     BlockContacts, BlockId, MaterialPoints, NeighbourList, PartReactions, Pose, Reaction,
     RigidMotion, RigidVelocity, StepTravel, bodies_in_scene_order,
 };
+use crate::io::kept_resources::{KeptResources, StoredResource};
 use crate::io::state_hash::StateHasher;
 use crate::math::Real;
 use crate::resources::{
@@ -42,7 +44,7 @@ const MAGIC: &[u8; 8] = b"MPDEMCK\0";
 
 /// The layout of the stored state; a checkpoint of another layout is
 /// refused rather than misread.
-const FORMAT: u32 = 1;
+const FORMAT: u32 = 2;
 
 /// Why a checkpoint could not be written or resumed.
 #[derive(Debug, thiserror::Error)]
@@ -83,6 +85,15 @@ pub enum CheckpointError {
     /// The scene itself could not be built.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// A checkpoint was to be restored into a simulation that cannot take
+    /// it (one that has stepped, or was built from another scene).
+    #[error("cannot restore {}: {detail}", path.display())]
+    Restore {
+        /// The checkpoint file.
+        path: PathBuf,
+        /// Why.
+        detail: String,
+    },
 }
 
 /// Everything a checkpoint stores.
@@ -111,6 +122,8 @@ struct RunState {
     block_log: BlockLog,
     body_pairs: BodyPairLog,
     stages: Option<StageProgress>,
+    /// The user resources registered to be kept, by name.
+    user: Vec<StoredResource>,
 }
 
 /// One block's changing state.
@@ -144,9 +157,14 @@ pub fn scene_fingerprint(scene: &Scene) -> u64 {
 pub fn write_checkpoint(
     world: &mut World,
     fingerprint: u64,
+    kept: &KeptResources,
     path: &Path,
 ) -> Result<(), CheckpointError> {
-    let state = capture(world, fingerprint);
+    let user = kept.save(world).map_err(|detail| CheckpointError::Encode {
+        path: path.to_path_buf(),
+        detail,
+    })?;
+    let state = capture(world, fingerprint, user);
     let mut bytes = MAGIC.to_vec();
     bytes.extend_from_slice(&FORMAT.to_le_bytes());
     let bytes = postcard::to_extend(&state, bytes).map_err(|e| CheckpointError::Encode {
@@ -172,11 +190,13 @@ pub fn write_checkpoint(
 }
 
 /// Puts the state stored in `path` into `world`, freshly spawned from the
-/// scene whose fingerprint is `fingerprint`.
+/// scene whose fingerprint is `fingerprint`, with the user resources of
+/// `kept`.
 pub fn restore_checkpoint(
     world: &mut World,
     scene: &Scene,
     fingerprint: u64,
+    kept: &KeptResources,
     path: &Path,
 ) -> Result<(), CheckpointError> {
     let format_error = |detail: String| CheckpointError::Format {
@@ -212,10 +232,10 @@ pub fn restore_checkpoint(
     {
         return Err(format_error("its bodies are not the scene's".into()));
     }
-    apply(world, scene, state, &bodies).map_err(format_error)
+    apply(world, scene, state, kept, &bodies).map_err(format_error)
 }
 
-fn capture(world: &mut World, fingerprint: u64) -> RunState {
+fn capture(world: &mut World, fingerprint: u64, user: Vec<StoredResource>) -> RunState {
     let bodies = bodies_in_scene_order(world)
         .into_iter()
         .filter_map(|e| {
@@ -272,6 +292,7 @@ fn capture(world: &mut World, fingerprint: u64) -> RunState {
         stages: world
             .get_resource::<StagePlan>()
             .map(|plan| plan.progress.clone()),
+        user,
     }
 }
 
@@ -279,8 +300,15 @@ fn apply(
     world: &mut World,
     scene: &Scene,
     state: RunState,
+    kept: &KeptResources,
     bodies: &[Entity],
 ) -> Result<(), String> {
+    // First what can be refused without having changed the world.
+    let planned = world.contains_resource::<StagePlan>();
+    if planned != state.stages.is_some() {
+        return Err("its stages are not the scene's".into());
+    }
+    kept.load(world, state.user)?;
     {
         let mut clock = world.resource_mut::<Clock>();
         clock.step = state.step;
@@ -321,15 +349,13 @@ fn apply(
         &mut world.resource_mut::<BodyPairLog>().samples,
         state.body_pairs.samples,
     );
-    match (world.remove_resource::<StagePlan>(), state.stages) {
-        (Some(mut plan), Some(progress)) => {
-            plan.bodies = bodies.to_vec();
-            plan.progress = progress;
-            carry_on_a_stage_cut_short(world, &mut plan.progress);
-            world.insert_resource(plan);
-        }
-        (None, None) => {}
-        _ => return Err("its stages are not the scene's".into()),
+    if let Some(progress) = state.stages
+        && let Some(mut plan) = world.remove_resource::<StagePlan>()
+    {
+        plan.bodies = bodies.to_vec();
+        plan.progress = progress;
+        carry_on_a_stage_cut_short(world, &mut plan.progress);
+        world.insert_resource(plan);
     }
     Ok(())
 }
