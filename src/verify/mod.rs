@@ -162,7 +162,7 @@ pub const CASES: &[Case] = &[
         name: "column_collapse",
         source: "issue 4, item 7",
         about: "granular column collapse, H/L = 0.5: run-out and final height",
-        minutes: 17.0,
+        minutes: 20.0,
         run: collapse::run,
     },
 ];
