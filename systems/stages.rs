@@ -78,7 +78,9 @@ fn stage_end(world: &mut World, plan: &mut StagePlan) -> Option<StageEndReason> 
                     *old = *new;
                 }
             }
-            largest <= below
+            let moved = plan.progress.peak_stress_change > below;
+            plan.progress.peak_stress_change = plan.progress.peak_stress_change.max(largest);
+            moved && largest <= below
         }
     };
     if settled {
@@ -210,6 +212,7 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
     plan.progress.current = index;
     plan.progress.started = time;
     plan.progress.peak_kinetic = 0.0;
+    plan.progress.peak_stress_change = 0.0;
     plan.progress.previous_stress = match spec.end {
         StageEnd::StressChange { .. } => bodies
             .iter()

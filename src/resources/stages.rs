@@ -27,6 +27,9 @@ pub struct StageProgress {
     pub started: Real,
     /// Largest kinetic energy of the current stage so far (J/m).
     pub peak_kinetic: Real,
+    /// Largest change of a stress component in one step during the
+    /// current stage so far (Pa).
+    pub peak_stress_change: Real,
     /// Stresses of every body (scene order) after the previous step, kept
     /// only while a stage ends on the stress change.
     pub previous_stress: Vec<Vec<SymTensor>>,

@@ -65,7 +65,10 @@ pub enum StageEnd {
         max_time: Real,
     },
     /// When no stress component of any point changed by more than `below`
-    /// (Pa) in the last step, or after `max_time` (s) with a warning.
+    /// (Pa) in the last step, once some had changed by more during the
+    /// stage (from rest the stresses only begin to change: without that,
+    /// the first step would end the stage), or after `max_time` (s) with a
+    /// warning; a stage in which nothing moves ends at `max_time`.
     StressChange {
         /// Threshold (Pa).
         #[serde(deserialize_with = "rules::de_positive")]
