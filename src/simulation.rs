@@ -89,9 +89,12 @@ impl Simulation {
     }
 
     /// Puts the state of the checkpoint at `path` into this simulation,
-    /// which must be built from `scene` and not have stepped yet; the
-    /// checkpoint must hold exactly the user resources registered with
-    /// [`Simulation::keep_in_checkpoints`]. See [`Simulation::resume`].
+    /// which must be built from `scene` (pass the same scene: its `time.end`
+    /// is the run's end) and not have stepped yet; the checkpoint must hold
+    /// exactly the user resources registered with
+    /// [`Simulation::keep_in_checkpoints`], and replaces them (insert
+    /// nothing after it). See [`Simulation::resume`]. On an error the
+    /// simulation may be partly restored: discard it.
     pub fn restore_checkpoint(
         &mut self,
         scene: &Scene,

@@ -12,7 +12,8 @@ use std::collections::BTreeMap;
 
 /// After each step: ends the current stage when its duration has elapsed,
 /// its settling condition holds (kinetic energy down to `ratio` of the
-/// stage's peak, or no stress component changed by `below` in the step) or
+/// stage's peak, or no stress component changed by `below` in the step,
+/// once some step of the stage changed one by more) or
 /// its `max_time` has passed (a warning), then enters the next stage; after
 /// the last one the run ends (the clock's end is set to now). Reaching the
 /// scene's `time.end` first ends the stage with a warning. Does nothing in a

@@ -2,8 +2,8 @@
 //! and resumed continues bit-identically to the run that never stopped,
 //! through block and body contacts, dynamic blocks, stages (their end
 //! conditions, surcharges, blocks they add or remove) and a later end
-//! time; a checkpoint of another scene, or a file that is not one, is
-//! refused with its path.
+//! time, and with the resources user systems registered; a checkpoint of
+//! another scene, or a file that is not one, is refused with its path.
 
 mod common;
 
@@ -400,4 +400,12 @@ fn a_user_resource_registered_for_checkpoints_resumes_bit_identically() {
         .expect_err("refused")
         .to_string();
     assert!(message.contains("already stepped"), "{message}");
+    // And restoring into a simulation built from another scene.
+    let mut other = scene.clone();
+    other.time.dt *= 0.5;
+    let message = controlled(&other, true)
+        .restore_checkpoint(&scene, &file)
+        .expect_err("refused")
+        .to_string();
+    assert!(message.contains("another scene"), "{message}");
 }

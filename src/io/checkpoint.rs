@@ -219,8 +219,14 @@ pub fn restore_checkpoint(
             "layout {format} where this version reads {FORMAT}"
         )));
     }
-    let state: RunState = postcard::from_bytes(stored)
+    let (state, rest): (RunState, &[u8]) = postcard::take_from_bytes(stored)
         .map_err(|e| format_error(format!("its state cannot be read: {e}")))?;
+    if !rest.is_empty() {
+        return Err(format_error(format!(
+            "{} bytes follow its state",
+            rest.len()
+        )));
+    }
     if state.scene != fingerprint {
         return Err(CheckpointError::OtherScene {
             path: path.to_path_buf(),
@@ -303,7 +309,10 @@ fn apply(
     kept: &KeptResources,
     bodies: &[Entity],
 ) -> Result<(), String> {
-    // First what can be refused without having changed the world.
+    // First what can be refused without having changed the world: the
+    // stages, and the user resources (all decoded before any is put in). A
+    // block the scene lacks is found after the points are in: a world whose
+    // restore failed is to be discarded.
     let planned = world.contains_resource::<StagePlan>();
     if planned != state.stages.is_some() {
         return Err("its stages are not the scene's".into());

@@ -8,17 +8,20 @@ use serde::Serialize;
 use serde::de::DeserializeOwned;
 
 /// Encodes one resource of the world.
-type Save = fn(&World) -> Result<Vec<u8>, String>;
+type Encode = fn(&World) -> Result<Vec<u8>, String>;
 
-/// Decodes one resource and puts it into the world.
-type Load = fn(&mut World, &[u8]) -> Result<(), String>;
+/// Puts a decoded resource into the world.
+type Insert = Box<dyn FnOnce(&mut World)>;
+
+/// Decodes one resource, ready to be put into the world.
+type Decode = fn(&[u8]) -> Result<Insert, String>;
 
 /// One registered resource type.
 #[derive(Clone)]
 struct Kept {
     name: String,
-    save: Save,
-    load: Load,
+    encode: Encode,
+    decode: Decode,
 }
 
 /// The user resources that checkpoints carry, by name, in the order they
@@ -34,12 +37,14 @@ pub type StoredResource = (String, Vec<u8>);
 
 impl KeptResources {
     /// Registers the resource type `R` under `name`, replacing an earlier
-    /// registration of that name.
+    /// registration of that name. Register user resources only: the
+    /// engine's own (clock, settings, records) are restored by the
+    /// checkpoint itself, after the user resources.
     pub fn keep<R: Resource + Serialize + DeserializeOwned>(&mut self, name: &str) {
         let kept = Kept {
             name: name.to_owned(),
-            save: save::<R>,
-            load: load::<R>,
+            encode: encode::<R>,
+            decode: decode::<R>,
         };
         match self.kept.iter_mut().find(|k| k.name == name) {
             Some(existing) => *existing = kept,
@@ -53,7 +58,7 @@ impl KeptResources {
             .iter()
             .map(|k| {
                 let bytes =
-                    (k.save)(world).map_err(|e| format!("user resource '{}': {e}", k.name))?;
+                    (k.encode)(world).map_err(|e| format!("user resource '{}': {e}", k.name))?;
                 Ok((k.name.clone(), bytes))
             })
             .collect()
@@ -62,35 +67,51 @@ impl KeptResources {
     /// Puts the `stored` resources into `world`. The stored names must be
     /// the registered ones: a resource the run keeps but the checkpoint
     /// lacks, or one the checkpoint holds but the run does not keep, would
-    /// make the resumed run differ, and is refused.
+    /// make the resumed run differ, and is refused. Every resource is
+    /// decoded before any is put in, so a refusal leaves `world` as it was.
     pub fn load(&self, world: &mut World, stored: Vec<StoredResource>) -> Result<(), String> {
-        let mut registered: Vec<&str> = self.kept.iter().map(|k| k.name.as_str()).collect();
-        let mut in_file: Vec<&str> = stored.iter().map(|(name, _)| name.as_str()).collect();
-        registered.sort_unstable();
-        in_file.sort_unstable();
-        if registered != in_file {
+        let mut registered: Vec<&Kept> = self.kept.iter().collect();
+        let mut stored = stored;
+        registered.sort_unstable_by(|a, b| a.name.cmp(&b.name));
+        stored.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        let registered_names: Vec<&str> = registered.iter().map(|k| k.name.as_str()).collect();
+        let stored_names: Vec<&str> = stored.iter().map(|(name, _)| name.as_str()).collect();
+        if registered_names != stored_names {
             return Err(format!(
-                "it holds the user resources {in_file:?} where this run keeps {registered:?} \
-                 (register them with Simulation::keep_in_checkpoints before restoring)"
+                "it holds the user resources {stored_names:?} where this run keeps \
+                 {registered_names:?} (register them with Simulation::keep_in_checkpoints \
+                 before restoring)"
             ));
         }
-        for kept in &self.kept {
-            if let Some((_, bytes)) = stored.iter().find(|(name, _)| *name == kept.name) {
-                (kept.load)(world, bytes)
-                    .map_err(|e| format!("user resource '{}': {e}", kept.name))?;
-            }
+        let inserts = registered
+            .iter()
+            .zip(&stored)
+            .map(|(kept, (name, bytes))| {
+                (kept.decode)(bytes).map_err(|e| format!("user resource '{name}': {e}"))
+            })
+            .collect::<Result<Vec<Insert>, String>>()?;
+        for insert in inserts {
+            insert(world);
         }
         Ok(())
     }
 }
 
-fn save<R: Resource + Serialize>(world: &World) -> Result<Vec<u8>, String> {
+fn encode<R: Resource + Serialize>(world: &World) -> Result<Vec<u8>, String> {
     let resource = world.get_resource::<R>().ok_or("it is not in the world")?;
     postcard::to_allocvec(resource).map_err(|e| e.to_string())
 }
 
-fn load<R: Resource + DeserializeOwned>(world: &mut World, bytes: &[u8]) -> Result<(), String> {
-    let resource: R = postcard::from_bytes(bytes).map_err(|e| e.to_string())?;
-    world.insert_resource(resource);
-    Ok(())
+fn decode<R: Resource + DeserializeOwned>(bytes: &[u8]) -> Result<Insert, String> {
+    let (resource, rest): (R, &[u8]) =
+        postcard::take_from_bytes(bytes).map_err(|e| e.to_string())?;
+    if !rest.is_empty() {
+        return Err(format!(
+            "{} bytes left after it: the resource's type has changed",
+            rest.len()
+        ));
+    }
+    Ok(Box::new(move |world: &mut World| {
+        world.insert_resource(resource);
+    }))
 }

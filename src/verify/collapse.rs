@@ -16,7 +16,7 @@ fn extent(positions: &[crate::math::DVec2]) -> (Real, Real) {
         })
 }
 
-/// The full scene to 1.5 s (about 17 minutes on 2 cores).
+/// The full scene to 1.5 s (about 20 minutes on 2 cores).
 pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
     let scene = ctx.scene("column_collapse.ron")?;
     let mut sim = ctx.run("column_collapse", &scene)?;
