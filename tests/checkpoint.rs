@@ -341,6 +341,25 @@ fn controlled(scene: &Scene, kept: bool) -> Simulation {
     sim
 }
 
+/// A controlled run stepped to step 120 and written to `file`, and a fresh
+/// one restored from it.
+fn written_and_restored(
+    scene: &Scene,
+    kept: bool,
+    file: &std::path::Path,
+) -> (Simulation, Simulation) {
+    let mut first = controlled(scene, kept);
+    step_to(&mut first, 120);
+    first
+        .write_checkpoint(file)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut restored = controlled(scene, kept);
+    restored
+        .restore_checkpoint(scene, file)
+        .unwrap_or_else(|e| panic!("{e}"));
+    (first, restored)
+}
+
 #[test]
 fn a_user_resource_registered_for_checkpoints_resumes_bit_identically() {
     let mut scene = common::load_scene("wave_1d.ron");
@@ -349,15 +368,7 @@ fn a_user_resource_registered_for_checkpoints_resumes_bit_identically() {
     straight.run().unwrap_or_else(|e| panic!("{e}"));
 
     let file = checkpoint_file("controller");
-    let mut first = controlled(&scene, true);
-    step_to(&mut first, 120);
-    first
-        .write_checkpoint(&file)
-        .unwrap_or_else(|e| panic!("{e}"));
-    let mut resumed = controlled(&scene, true);
-    resumed
-        .restore_checkpoint(&scene, &file)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let (first, mut resumed) = written_and_restored(&scene, true, &file);
     assert_eq!(
         resumed.world().resource::<Controller>(),
         first.world().resource::<Controller>()
@@ -372,15 +383,7 @@ fn a_user_resource_registered_for_checkpoints_resumes_bit_identically() {
     // Without the controller's state the resumed run differs: the test can
     // tell the two apart.
     let unkept = checkpoint_file("controller-unkept");
-    let mut first = controlled(&scene, false);
-    step_to(&mut first, 120);
-    first
-        .write_checkpoint(&unkept)
-        .unwrap_or_else(|e| panic!("{e}"));
-    let mut fresh = controlled(&scene, false);
-    fresh
-        .restore_checkpoint(&scene, &unkept)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let (_, mut fresh) = written_and_restored(&scene, false, &unkept);
     fresh.run().unwrap_or_else(|e| panic!("{e}"));
     assert_ne!(fresh.state_hash(), straight.state_hash());
 
