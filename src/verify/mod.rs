@@ -11,6 +11,7 @@
 //! tolerances and why.
 
 pub mod collapse;
+pub mod dam_break;
 pub mod geostatic;
 pub mod hertz;
 pub mod pile;
@@ -107,7 +108,7 @@ pub struct Case {
     pub run: fn(&Context) -> Result<Vec<Check>, VerifyError>,
 }
 
-/// Every case: the quick ones in the paper's order, then the three long ones.
+/// Every case: the quick ones in the paper's order, then the long ones.
 pub const CASES: &[Case] = &[
     Case {
         name: "wave_1d",
@@ -157,6 +158,13 @@ pub const CASES: &[Case] = &[
         about: "pile driven into Mohr–Coulomb sand: the cone resistance q_c",
         minutes: 8.5,
         run: pile::run,
+    },
+    Case {
+        name: "dam_break",
+        source: "paper 4.5.2",
+        about: "dam break on an elastic cantilever beam: the impact on the beam",
+        minutes: 13.0,
+        run: dam_break::run,
     },
     Case {
         name: "column_collapse",
