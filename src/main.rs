@@ -70,8 +70,8 @@ enum Command {
     },
     /// Run the paper's validation cases at full size and measure each
     /// against its target (the table is also written to OUT/verify.csv).
-    /// Exits with failure if a target is missed. All cases take about 40
-    /// minutes on 2 cores.
+    /// Exits with failure if a target is missed. All cases take about an
+    /// hour on 2 cores.
     Verify {
         /// Cases to run, by name [default: all]; see --list.
         cases: Vec<String>,
