@@ -5,7 +5,7 @@
 //! reported against what its text says; that the run settles, breaks and
 //! keeps the water out of the beam is judged.
 
-use super::{Check, Context, VerifyError, probe_samples};
+use super::{Check, Context, VerifyError, probe_samples, stages_as_planned};
 use crate::math::Real;
 use crate::resources::{BodyContacts, Clock, StageEndReason, StageLog};
 
@@ -42,21 +42,18 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
         }
         false
     })?;
-    let log = sim.world().resource::<StageLog>();
-    let stages: Vec<(&str, StageEndReason)> = log
-        .records
-        .iter()
-        .map(|r| (r.name.as_str(), r.reason))
-        .collect();
-    let planned = [
-        ("settle", StageEndReason::Condition),
-        ("dam break", StageEndReason::Duration),
-    ];
+    let (stages, as_planned) = stages_as_planned(
+        &sim,
+        &[
+            ("settle", StageEndReason::Condition),
+            ("dam break", StageEndReason::Duration),
+        ],
+    );
     let mut checks = vec![Check::judged(
         "the stages, in order, and how they ended",
-        format!("{stages:?}, {} warnings", log.warnings.len()),
+        stages,
         "the column settles on its kinetic-energy condition, then the dam break runs its duration",
-        stages == planned && log.warnings.is_empty(),
+        as_planned,
     )];
     let opened_at = opened_at.unwrap_or(Real::NAN);
     checks.push(Check::judged(

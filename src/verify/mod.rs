@@ -22,7 +22,7 @@ pub mod wave;
 
 use crate::components::MaterialPoints;
 use crate::math::{DVec2, Real};
-use crate::resources::{ProbeSample, Probes};
+use crate::resources::{ProbeSample, Probes, StageEndReason, StageLog};
 use crate::scene::{Scene, SceneError};
 use crate::{Simulation, StepError};
 use std::path::{Path, PathBuf};
@@ -464,4 +464,20 @@ pub fn first<'s, T>(items: &'s [T], what: &str) -> Result<&'s T, VerifyError> {
     items
         .first()
         .ok_or_else(|| VerifyError::Measurement(format!("the run recorded no {what}")))
+}
+
+/// The stages `sim` went through, by name and how each ended, with the
+/// number of stage warnings (for the measured column), and whether they
+/// are exactly `planned` without a warning.
+pub fn stages_as_planned(sim: &Simulation, planned: &[(&str, StageEndReason)]) -> (String, bool) {
+    let log = sim.world().resource::<StageLog>();
+    let stages: Vec<(&str, StageEndReason)> = log
+        .records
+        .iter()
+        .map(|r| (r.name.as_str(), r.reason))
+        .collect();
+    (
+        format!("{stages:?}, {} warnings", log.warnings.len()),
+        stages == planned && log.warnings.is_empty(),
+    )
 }
