@@ -205,6 +205,30 @@ fn stages_resume_mid_stage_with_their_loads_and_blocks() {
 }
 
 #[test]
+fn a_stress_change_stage_resumes_with_its_peak_change() {
+    // The geostatic column settling on StressChange (about 2 350 steps),
+    // resumed one step before the stage ends: only a restored peak change
+    // (and the previous step's stresses) ends it on the same step; a peak
+    // started afresh would not count the small change of that step.
+    let mut scene = common::load_scene("geostatic_column.ron");
+    scene.stages[0].end = StageEnd::StressChange {
+        below: 0.01,
+        max_time: 8.0,
+    };
+    let mut straight = build(&scene);
+    straight.run().expect("run");
+    let record = straight.world().resource::<StageLog>().records[0].clone();
+    assert_eq!(record.reason, StageEndReason::Condition);
+    let file = checkpoint_file("stress-change");
+    let mut first = build(&scene);
+    step_to(&mut first, record.steps - 1);
+    first.write_checkpoint(&file).expect("checkpoint");
+    let mut resumed = resume(&scene, &file);
+    resumed.run().expect("run");
+    assert_same_run(&mut resumed, &mut straight);
+}
+
+#[test]
 fn a_stage_cut_short_by_the_end_time_goes_on_when_the_end_grows() {
     // The run ends (time.end) in the geostatic stage, which is recorded as
     // cut short; resumed with a later end, that stage goes on, as in a run
