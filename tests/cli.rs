@@ -186,8 +186,9 @@ fn verify_tabulates_a_case_and_fails_when_a_target_is_missed() {
     }
 
     // The wave case on the shipped scenes: met, and tabulated.
-    let base = std::env::temp_dir().join(format!("mpdem-verify-{}", std::process::id()));
-    std::fs::create_dir_all(&base).expect("temporary folder");
+    // Twice the initial velocity the exact solution assumes: the midpoint
+    // error is 100%, the case misses its target.
+    let base = common::edited_scenes_folder("wave_1d.ron", "verify", &[("x*(1-x)", "2*x*(1-x)")]);
     let out = base.join("out");
     let scenes = common::scene_path("");
     let args = |scenes: &str| {
@@ -217,15 +218,7 @@ fn verify_tabulates_a_case_and_fails_when_a_target_is_missed() {
             .all(|l| l.ends_with("\"met\"") || l.starts_with("case,"))
     );
 
-    // Twice the initial velocity the exact solution assumes: the midpoint
-    // error is 100%, the case misses its target and the command fails.
-    std::fs::write(
-        base.join("wave_1d.ron"),
-        std::fs::read_to_string(common::scene_path("wave_1d.ron"))
-            .unwrap()
-            .replacen("x*(1-x)", "2*x*(1-x)", 1),
-    )
-    .unwrap();
+    // The edited wave: the command fails.
     let missed = Command::new(env!("CARGO_BIN_EXE_mpdem"))
         .args(args(base.to_str().unwrap()))
         .output()

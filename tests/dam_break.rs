@@ -8,24 +8,20 @@ mod common;
 /// 100 beam points), the step doubled (within both limits at this cell)
 /// and 0.4 s after the gate opens (the first impact), in a fresh folder.
 fn reduced_scenes_folder() -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("mpdem-dam-break-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temporary folder");
-    let mut text = std::fs::read_to_string(common::scene_path("dam_break.ron")).expect("scene");
-    for (from, to) in [
-        ("cell_size: 0.002,", "cell_size: 0.004,"),
-        ("cells: (400, 500),", "cells: (200, 250),"),
-        ("dt: 1.5e-5,", "dt: 3e-5,"),
-        ("end: Duration(1.0),", "end: Duration(0.4),"),
-        (
-            "min: (0.597, -0.001), max: (0.607, 0.001)",
-            "min: (0.595, -0.001), max: (0.609, 0.001)",
-        ),
-    ] {
-        assert!(text.contains(from), "'{from}' not in dam_break.ron");
-        text = text.replacen(from, to, 1);
-    }
-    std::fs::write(dir.join("dam_break.ron"), text).expect("scene written");
-    dir
+    common::edited_scenes_folder(
+        "dam_break.ron",
+        "dam-break",
+        &[
+            ("cell_size: 0.002,", "cell_size: 0.004,"),
+            ("cells: (400, 500),", "cells: (200, 250),"),
+            ("dt: 1.5e-5,", "dt: 3e-5,"),
+            ("end: Duration(1.0),", "end: Duration(0.4),"),
+            (
+                "min: (0.597, -0.001), max: (0.607, 0.001)",
+                "min: (0.595, -0.001), max: (0.609, 0.001)",
+            ),
+        ],
+    )
 }
 
 #[test]

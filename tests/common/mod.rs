@@ -60,14 +60,31 @@ pub fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T 
         .install(f)
 }
 
+/// Writes the scene `file` of `scenes/`, each `(from, to)` of `edits`
+/// replaced once, as `name` into a fresh temporary folder named after
+/// `tag`; returns the folder and the scene file.
+fn write_edited(file: &str, tag: &str, name: &str, edits: &[(&str, &str)]) -> (PathBuf, PathBuf) {
+    let base = std::env::temp_dir().join(format!("mpdem-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&base).expect("temporary folder");
+    let mut text = std::fs::read_to_string(scene_path(file)).expect("scene");
+    for (from, to) in edits {
+        assert!(text.contains(from), "'{from}' not in {file}");
+        text = text.replacen(from, to, 1);
+    }
+    let scene = base.join(name);
+    std::fs::write(&scene, text).expect("scene written");
+    (base, scene)
+}
+
 /// Writes the wave scene with `from` replaced by `to` into a fresh temporary
 /// folder named after `tag`; returns the folder and the scene file.
 pub fn edited_wave_scene(tag: &str, from: &str, to: &str) -> (PathBuf, PathBuf) {
-    let base = std::env::temp_dir().join(format!("mpdem-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&base).expect("temporary folder");
-    let text = std::fs::read_to_string(scene_path("wave_1d.ron")).expect("wave scene");
-    assert!(text.contains(from), "'{from}' not in wave_1d.ron");
-    let scene = base.join(format!("{tag}.ron"));
-    std::fs::write(&scene, text.replacen(from, to, 1)).expect("scene written");
-    (base, scene)
+    write_edited("wave_1d.ron", tag, &format!("{tag}.ron"), &[(from, to)])
+}
+
+/// A fresh temporary folder named after `tag` holding the scene `file` of
+/// `scenes/`, under its own name, with `edits` made (e.g. a scenes folder
+/// for `mpdem verify`).
+pub fn edited_scenes_folder(file: &str, tag: &str, edits: &[(&str, &str)]) -> PathBuf {
+    write_edited(file, tag, file, edits).0
 }
