@@ -427,6 +427,14 @@ pub fn mass_weighted_mean(points: &MaterialPoints, column: &[DVec2]) -> DVec2 {
         / points.total_mass()
 }
 
+/// Centre of mass of a body's points, and its velocity.
+pub fn centre_of_mass(points: &MaterialPoints) -> (DVec2, DVec2) {
+    (
+        mass_weighted_mean(points, &points.position),
+        points.momentum() / points.total_mass(),
+    )
+}
+
 /// The mean σ_yy of a body's lowest row of points (within 1 µm of the
 /// lowest), e.g. the base stress of a soil column.
 pub fn base_stress(points: &MaterialPoints) -> Real {

@@ -1,7 +1,7 @@
 //! Paper section 4.4.1: two Neo-Hookean rings colliding at ±30 m/s, on
 //! separate grid layers, meeting only through the disk–disk DEM contact.
 
-use super::{Check, Context, VerifyError, body, first, largest, mass_weighted_mean, percent};
+use super::{Check, Context, VerifyError, body, centre_of_mass, first, largest, percent};
 use crate::Simulation;
 use crate::math::{DVec2, Real};
 use crate::resources::{EnergyLog, EnergySample};
@@ -11,11 +11,7 @@ const OUTER_RADIUS: Real = 0.04;
 
 /// Centre of mass of a body and its velocity.
 pub fn centre(sim: &mut Simulation, name: &str) -> Result<(DVec2, DVec2), VerifyError> {
-    let points = body(sim, name)?;
-    Ok((
-        mass_weighted_mean(points, &points.position),
-        mass_weighted_mean(points, &points.velocity),
-    ))
+    Ok(centre_of_mass(body(sim, name)?))
 }
 
 /// Largest distance of a body's points from its centre of mass.

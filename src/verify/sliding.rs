@@ -1,16 +1,16 @@
 //! Paper section 4.2.2: an elastic block sliding down a 45° slope with
 //! friction μ = 0.5, against the kinematics of a rigid block.
 
-use super::{Check, Context, VerifyError, body, mass_weighted_mean, percent};
+use super::{Check, Context, VerifyError, body, centre_of_mass, mass_weighted_mean, percent};
 use crate::components::MaterialPoints;
 use crate::math::{DVec2, Real};
 
 /// Motion of a body's centre of mass: (displacement, velocity).
 pub fn centre_of_mass_motion(points: &MaterialPoints) -> (DVec2, DVec2) {
-    let mean = |column: &[DVec2]| mass_weighted_mean(points, column);
+    let (centre, velocity) = centre_of_mass(points);
     (
-        mean(&points.position) - mean(&points.initial_position),
-        mean(&points.velocity),
+        centre - mass_weighted_mean(points, &points.initial_position),
+        velocity,
     )
 }
 
