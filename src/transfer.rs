@@ -1,12 +1,15 @@
 //! Deterministic parallel point-to-grid scatter (DESIGN.md section 6).
 //!
-//! Points are cut into fixed-size chunks of [`CHUNK_POINTS`] in their stored
-//! order, whatever the number of threads. Each chunk scatters into its own
-//! small dense patch covering the chunk's stencils; the patches are then added
-//! into the layer row by row, each row visiting the patches in chunk order.
-//! Every nodal sum is therefore formed in one fixed order, so the result is
-//! bit-identical for any thread count. Patch buffers are kept between steps:
-//! after the first step a scatter allocates nothing.
+//! Points are sorted by the grid row of their stencil ([`ScatterOrder`]) and
+//! cut, in that order, into fixed-size chunks of [`CHUNK_POINTS`], whatever
+//! the number of threads. Each chunk scatters into its own small dense patch
+//! covering the chunk's stencils; the patches are then added into the layer
+//! row by row, each row visiting the patches in chunk order. Every nodal sum
+//! is therefore formed in one fixed order, so the result is bit-identical for
+//! any thread count. Sorting keeps the patches small however far the points
+//! have moved from the order they were stored in: a chunk spans a few rows
+//! of the body, not the whole body. Patch buffers are kept between steps:
+//! after the first steps a scatter allocates nothing.
 
 use crate::components::NodeRect;
 use crate::math::{DVec2, Real};
@@ -29,6 +32,74 @@ pub const MIN_NODES_PER_TASK: usize = 4096;
 /// small enough to give both cores many chunks at 10⁴ points.
 pub const CHUNK_POINTS: usize = 1024;
 
+/// The order in which the scatters of a step visit a body's points: by the
+/// grid row of their stencil's base node, and within a row in stored order
+/// (a stable counting sort, so the order depends on the positions only).
+///
+/// A body's points are stored in the order they were generated, row by row,
+/// so chunks of stored points start as thin strips. Once a flow has mixed
+/// them (a dam break, a collapsing column), a chunk of stored points can be
+/// spread over the whole body, and its patch, the box around its stencils,
+/// with it: in a dam break the patches grew to 1.4 times the nodes the points
+/// write. Sorted chunks span a few rows of the body at any time.
+#[derive(Clone, Debug, Default)]
+pub struct ScatterOrder {
+    /// Point indices, sorted by row.
+    points: Vec<u32>,
+    /// Whether `points` is 0, 1, 2, …: the points were stored in row order.
+    stored_order: bool,
+    /// Points per row of the window, then each row's next place in `points`.
+    rows: Vec<u32>,
+    /// The layer's window the stencils lie in.
+    window: NodeRect,
+}
+
+impl ScatterOrder {
+    /// Sorts the points of `stencils` by the row of their base node; every
+    /// stencil lies in `window` (a layer's window covers its points'
+    /// stencils). Points already stored in row order, as in a body that has
+    /// not flowed, cost one counting pass.
+    pub fn sort_by_row(&mut self, stencils: &[Stencil], window: NodeRect) {
+        self.window = window;
+        let low = window.start[1] as u32;
+        self.rows.clear();
+        self.rows.resize(window.end[1] - window.start[1], 0);
+        let mut in_row_order = true;
+        let mut previous = 0;
+        for s in stencils {
+            self.rows[(s.base[1] - low) as usize] += 1;
+            in_row_order &= s.base[1] >= previous;
+            previous = s.base[1];
+        }
+        if in_row_order {
+            if !self.stored_order || self.points.len() != stencils.len() {
+                self.points.clear();
+                self.points.extend(0..stencils.len() as u32);
+                self.stored_order = true;
+            }
+            return;
+        }
+        let mut first = 0;
+        for row in &mut self.rows {
+            let count = *row;
+            *row = first;
+            first += count;
+        }
+        self.points.resize(stencils.len(), 0);
+        for (p, s) in stencils.iter().enumerate() {
+            let place = &mut self.rows[(s.base[1] - low) as usize];
+            self.points[*place as usize] = p as u32;
+            *place += 1;
+        }
+        self.stored_order = false;
+    }
+
+    /// The point indices in scatter order.
+    pub fn points(&self) -> &[u32] {
+        &self.points
+    }
+}
+
 /// A dense rectangle of nodes receiving one chunk's contributions.
 #[derive(Clone, Debug, Default)]
 struct Patch<T> {
@@ -49,32 +120,49 @@ pub struct Scatter<T> {
 }
 
 impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
-    /// Scatters every point into the patches: for point p, `per_point(p)`
-    /// computes what the point carries once, then `per_node(&carried, S_ip, G_ip)`
-    /// gives its contribution to each stencil node.
+    /// Scatters every point into the patches, in chunks of `order` (sorted
+    /// from these `stencils`): for point p, `per_point(p)` computes what the
+    /// point carries once, then `per_node(&carried, S_ip, G_ip)` gives its
+    /// contribution to each stencil node.
     pub fn scatter<P>(
         &mut self,
         stencils: &[Stencil],
+        order: &ScatterOrder,
         per_point: impl Fn(usize) -> P + Sync,
         per_node: impl Fn(&P, Real, DVec2) -> T + Sync,
     ) {
-        let chunks = stencils.len().div_ceil(CHUNK_POINTS);
+        let widest = order.window.width();
+        let order = order.points();
+        assert_eq!(
+            order.len(),
+            stencils.len(),
+            "the scatter order was sorted for other stencils"
+        );
+        let chunks = order.len().div_ceil(CHUNK_POINTS);
         self.patches.resize_with(chunks, Patch::default);
         self.patches
             .par_iter_mut()
-            .enumerate()
-            .for_each(|(c, patch)| {
-                let first = c * CHUNK_POINTS;
-                let chunk = &stencils[first..(first + CHUNK_POINTS).min(stencils.len())];
-                patch.cover(chunk);
-                for (k, stencil) in chunk.iter().enumerate() {
-                    let carried = per_point(first + k);
-                    let origin = [patch.origin[0] as u32, patch.origin[1] as u32];
-                    stencil.scatter(&mut patch.values, origin, patch.width, |value, w, g| {
-                        *value += per_node(&carried, w, g);
-                    });
+            .zip(order.par_chunks(CHUNK_POINTS))
+            .for_each(|(patch, chunk)| {
+                patch.cover(chunk.iter().map(|&p| &stencils[p as usize]), widest);
+                let origin = [patch.origin[0] as u32, patch.origin[1] as u32];
+                for &p in chunk {
+                    let carried = per_point(p as usize);
+                    stencils[p as usize].scatter(
+                        &mut patch.values,
+                        origin,
+                        patch.width,
+                        |value, w, g| *value += per_node(&carried, w, g),
+                    );
                 }
             });
+    }
+
+    /// Nodes in all patches of the last scatter (what zeroing and merging
+    /// them costs, against nine per point for the scatter itself).
+    #[cfg(test)]
+    fn patch_nodes(&self) -> usize {
+        self.patches.iter().map(|p| p.values.len()).sum()
     }
 
     /// Adds the scattered values into `nodes`, a row-major field stored
@@ -117,8 +205,12 @@ impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
 }
 
 impl<T: Copy + Default> Patch<T> {
-    /// Resizes and zeroes the patch to cover every node of `stencils`.
-    fn cover(&mut self, stencils: &[Stencil]) {
+    /// Resizes and zeroes the patch to cover every node of `stencils`. A
+    /// patch that outgrows its buffer gets room for rows `widest` nodes long
+    /// (the layer window's width, which no patch exceeds): as a body spreads
+    /// sideways its patches widen, and they should not reallocate at each
+    /// widening.
+    fn cover<'a>(&mut self, stencils: impl Iterator<Item = &'a Stencil>, widest: usize) {
         let mut lo = [u32::MAX; 2];
         let mut hi = [0u32; 2];
         for s in stencils {
@@ -131,7 +223,12 @@ impl<T: Copy + Default> Patch<T> {
         self.width = (hi[0] - lo[0] + 1) as usize;
         self.height = (hi[1] - lo[1] + 1) as usize;
         self.values.clear();
-        self.values.resize(self.width * self.height, T::default());
+        let needed = self.width * self.height;
+        if self.values.capacity() < needed {
+            self.values
+                .reserve_exact(widest.max(self.width) * self.height);
+        }
+        self.values.resize(needed, T::default());
     }
 }
 
@@ -167,8 +264,10 @@ mod tests {
                 .build()
                 .unwrap();
             pool.install(|| {
+                let mut order = ScatterOrder::default();
+                order.sort_by_row(&stencils, NodeRect::whole(nodes));
                 let mut scatter = Scatter::<Real>::default();
-                scatter.scatter(&stencils, |p| 1.0 + p as Real, |m, w, _| m * w);
+                scatter.scatter(&stencils, &order, |p| 1.0 + p as Real, |m, w, _| m * w);
                 let mut grid = vec![0.0; nodes[0] * nodes[1]];
                 scatter.add_into(&mut grid, NodeRect::whole(nodes), |n, v| *n += v);
                 grid
@@ -191,5 +290,51 @@ mod tests {
         for (a, b) in one.iter().zip(&reference) {
             assert!((a - b).abs() <= 1e-12 * total);
         }
+    }
+
+    /// Points stored in an order that has nothing to do with their place (as
+    /// after a flow has mixed a body) give patches no larger than points
+    /// stored row by row: a chunk covers a few rows, never the whole body.
+    #[test]
+    fn mixed_points_scatter_into_patches_as_small_as_ordered_ones() {
+        let h = 0.1;
+        let (columns, rows) = (200usize, 50usize);
+        let grid = StencilGrid {
+            origin: DVec2::ZERO,
+            inv_cell_size: 1.0 / h,
+            nodes: [columns + 3, rows + 3],
+            walls: [[false; 2]; 2],
+        };
+        let stencil = |k: usize| {
+            let p = DVec2::new(
+                ((k % columns) as Real + 1.5) * h,
+                ((k / columns) as Real + 1.5) * h,
+            );
+            ShapeFunction::UGimp
+                .stencil(p, DVec2::splat(h / 2.0), &grid)
+                .unwrap()
+        };
+        let ordered: Vec<Stencil> = (0..columns * rows).map(stencil).collect();
+        // A fixed permutation: k ↦ 7919 k mod n scatters neighbours far apart.
+        let n = ordered.len();
+        let mixed: Vec<Stencil> = (0..n).map(|k| ordered[(7919 * k) % n]).collect();
+        let patch_nodes = |stencils: &[Stencil]| {
+            let mut order = ScatterOrder::default();
+            order.sort_by_row(stencils, NodeRect::whole(grid.nodes));
+            let mut scatter = Scatter::<Real>::default();
+            scatter.scatter(stencils, &order, |_| 1.0, |m, w, _| m * w);
+            scatter.patch_nodes()
+        };
+        let (sorted, unsorted) = (patch_nodes(&ordered), patch_nodes(&mixed));
+        // Each chunk of 1024 points spans ⌈1024 / 200⌉ + 1 = 7 rows of one
+        // point per cell, so its patch has at most 7 + 2 rows of 202 nodes.
+        assert_eq!(
+            sorted, unsorted,
+            "{sorted} nodes in order, {unsorted} mixed"
+        );
+        assert!(
+            sorted <= n.div_ceil(CHUNK_POINTS) * 9 * (columns + 2),
+            "{sorted}"
+        );
     }
 }

@@ -5,7 +5,7 @@ use crate::components::{GridLayer, MaterialPoints, StepTravel, TransferScratch, 
 use crate::math::{DVec2, Real, local_damping};
 use crate::resources::{Clock, Grid, PositionUpdate, Settings};
 use crate::shape_functions::Stencil;
-use crate::transfer::MIN_POINTS_PER_TASK;
+use crate::transfer::{MIN_POINTS_PER_TASK, ScatterOrder};
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
@@ -28,7 +28,8 @@ use rayon::prelude::*;
 /// still move it) is put back on the wall, and its velocity's component
 /// into the wall removed.
 ///
-/// Reads: `Grid`, `Settings`, `Clock`, `GridLayer`, `TransferScratch::stencils`.
+/// Reads: `Grid`, `Settings`, `Clock`, `GridLayer`, `TransferScratch::stencils`
+/// and `order`.
 /// Writes: `MaterialPoints` (position, velocity), `TransferScratch::xpic`,
 /// `StepTravel` (the largest |x^{n+1} − x^n|, a maximum, so exact for any
 /// thread count).
@@ -47,10 +48,16 @@ pub fn grid_to_particle(
     let (dt, beta, alpha) = (clock.dt, settings.pic_fraction, settings.particle_damping);
     let forward = settings.position_update == PositionUpdate::Forward;
     for (mut points, mut travel, layer, mut scratch) in &mut bodies {
-        let TransferScratch { stencils, xpic, .. } = &mut *scratch;
+        let TransferScratch {
+            stencils,
+            order: scatter_order,
+            xpic,
+            ..
+        } = &mut *scratch;
         let order = settings.xpic_order.unwrap_or(0);
         if order >= 1 {
-            xpic_velocities(order, &points.mass, layer, stencils, xpic);
+            let transfer = (&stencils[..], &*scatter_order);
+            xpic_velocities(order, &points.mass, layer, transfer, xpic);
         }
         let window = layer.window();
         let (origin, row_len) = (window.start.map(|k| k as u32), window.width());
@@ -119,7 +126,7 @@ fn xpic_velocities(
     order: u32,
     mass: &[Real],
     layer: &GridLayer,
-    stencils: &[Stencil],
+    (stencils, scatter_order): (&[Stencil], &ScatterOrder),
     xpic: &mut XpicScratch,
 ) {
     let XpicScratch {
@@ -161,7 +168,12 @@ fn xpic_velocities(
                 });
             });
         let carried = &*point_velocity;
-        momentum.scatter(stencils, |p| mass[p] * carried[p], |mv, w, _| w * *mv);
+        momentum.scatter(
+            stencils,
+            scatter_order,
+            |p| mass[p] * carried[p],
+            |mv, w, _| w * *mv,
+        );
         active
             .rows_mut(window, current)
             .for_each(|(_, row)| row.fill(DVec2::ZERO));

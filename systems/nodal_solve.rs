@@ -11,7 +11,7 @@ use bevy_ecs::prelude::*;
 /// (Cundall 1987), p_i ← p_i + f_i Δt and v_i^{n+1} = p_i / m_i, constrained.
 ///
 /// Reads: `Settings`, `Clock`, `MaterialPoints` (volume, stress),
-/// `TransferScratch::stencils`, `GridLayer::nodes` (mass, external force, velocity).
+/// `TransferScratch::stencils` and `order`, `GridLayer::nodes` (mass, external force, velocity).
 /// Writes: `TransferScratch::internal_force`, `GridLayer::nodes` (internal force, momentum, new velocity),
 /// `SharedLayers` (scratch).
 pub fn solve_nodal_momentum(
@@ -24,11 +24,13 @@ pub fn solve_nodal_momentum(
     for (points, mut layer, mut scratch) in &mut bodies {
         let TransferScratch {
             stencils,
+            order,
             internal_force,
             ..
         } = &mut *scratch;
         internal_force.scatter(
             stencils,
+            order,
             |p| (points.volume[p], points.stress[p]),
             |(volume, stress), _, g| -*volume * stress.dot(g),
         );

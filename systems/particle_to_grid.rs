@@ -22,7 +22,8 @@ type StepInputs<'w> = (
     Res<'w, Clock>,
 );
 
-/// Computes every point's stencil at x^n, scatters S_ip m_p, S_ip m_p V_p and
+/// Computes every point's stencil at x^n and the step's scatter order,
+/// scatters S_ip m_p, S_ip m_p V_p and
 /// S_ip (m_p (g + b(t)) + f_p,ext [+ f_p,contact in `BodyForce` mode]) to
 /// the body's layer (b the body's own `BodyAcceleration`, if any, at the
 /// step's start time), makes the layers of a contact group their sum
@@ -32,7 +33,7 @@ type StepInputs<'w> = (
 ///
 /// Reads: `Grid`, `Settings`, `Gravity`, `ContactSettings`, `Clock`, `BodyName`,
 /// `BodyAcceleration`, `MaterialPoints`.
-/// Writes: `TransferScratch`, `GridLayer::nodes` (mass, momentum, external force, velocity),
+/// Writes: `TransferScratch` (stencils, order, patches), `GridLayer::nodes` (mass, momentum, external force, velocity),
 /// `SharedLayers` (scratch), `Diagnostics`.
 pub fn particle_to_grid(
     (grid, settings, gravity, contact, clock): StepInputs,
@@ -54,6 +55,7 @@ pub fn particle_to_grid(
         let g = g + own.map_or(DVec2::ZERO, |a| a.at(clock.time));
         let TransferScratch {
             stencils,
+            order,
             mass_momentum,
             ..
         } = &mut *scratch;
@@ -73,8 +75,11 @@ pub fn particle_to_grid(
                 detail: format!("{} has left the grid", points.position[p]),
             });
         }
+        let window = layer.window();
+        order.sort_by_row(stencils, window);
         mass_momentum.scatter(
             stencils,
+            order,
             |p| {
                 let contact = if body_force {
                     points.contact_force[p]
@@ -90,7 +95,6 @@ pub fn particle_to_grid(
                 external_force: w * f,
             },
         );
-        let window = layer.window();
         mass_momentum.add_into(layer.nodes_mut(), window, |n, t| {
             n.mass += t.mass;
             n.momentum += t.momentum;

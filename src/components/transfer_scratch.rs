@@ -3,7 +3,7 @@
 
 use crate::math::{DVec2, Real};
 use crate::shape_functions::Stencil;
-use crate::transfer::Scatter;
+use crate::transfer::{Scatter, ScatterOrder};
 use bevy_ecs::prelude::Component;
 use std::ops::AddAssign;
 
@@ -34,6 +34,9 @@ pub struct TransferScratch {
     /// transfer of the step uses these, including the stress update of USL
     /// after the positions have moved.
     pub stencils: Vec<Stencil>,
+    /// The order in which this step's scatters visit the points, sorted
+    /// from `stencils` by particle-to-grid.
+    pub order: ScatterOrder,
     /// Patches of the mass / momentum / external force scatter.
     pub mass_momentum: Scatter<MassMomentumForce>,
     /// Patches of the internal force scatter.
