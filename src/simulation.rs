@@ -6,7 +6,7 @@ use crate::components::{
 use crate::io::checkpoint::{
     CheckpointError, restore_checkpoint, scene_fingerprint, write_checkpoint,
 };
-use crate::io::kept_resources::KeptResources;
+use crate::io::kept_state::KeptState;
 use crate::io::state_hash::StateHasher;
 use crate::math::Real;
 use crate::resources::{Clock, Diagnostics, NumericalFailure};
@@ -48,7 +48,7 @@ pub struct Simulation {
     /// The scene's fingerprint, which a checkpoint must match.
     fingerprint: u64,
     /// User resources that checkpoints carry.
-    kept: KeptResources,
+    kept: KeptState,
 }
 
 impl Simulation {
@@ -68,7 +68,7 @@ impl Simulation {
             name: scene.display_name().to_owned(),
             warnings,
             fingerprint: scene_fingerprint(scene),
-            kept: KeptResources::default(),
+            kept: KeptState::default(),
         })
     }
 
@@ -78,9 +78,10 @@ impl Simulation {
     /// stepping on gives bit-identically what the run that wrote it would
     /// have given. A checkpoint of another scene is refused.
     ///
-    /// A run whose user systems keep state in resources registered with
-    /// [`Simulation::keep_in_checkpoints`] is built with
-    /// [`Simulation::from_scene`], registers them, then calls
+    /// A run whose user systems keep state registered with
+    /// [`Simulation::keep_in_checkpoints`] or
+    /// [`Simulation::keep_components_in_checkpoints`] is built with
+    /// [`Simulation::from_scene`], registers it, then calls
     /// [`Simulation::restore_checkpoint`].
     pub fn resume(scene: &Scene, path: &Path) -> Result<Self, CheckpointError> {
         let mut sim = Self::from_scene(scene)?;
@@ -91,9 +92,10 @@ impl Simulation {
     /// Puts the state of the checkpoint at `path` into this simulation,
     /// which must be built from `scene` (pass the same scene: its `time.end`
     /// is the run's end) and not have stepped yet; the checkpoint must hold
-    /// exactly the user resources registered with
-    /// [`Simulation::keep_in_checkpoints`], and replaces them (insert
-    /// nothing after it). See [`Simulation::resume`]. On an error the
+    /// exactly the user state registered with
+    /// [`Simulation::keep_in_checkpoints`] and
+    /// [`Simulation::keep_components_in_checkpoints`], and replaces it
+    /// (insert nothing after it). See [`Simulation::resume`]. On an error the
     /// simulation may be partly restored: discard it.
     pub fn restore_checkpoint(
         &mut self,
@@ -127,7 +129,21 @@ impl Simulation {
     /// stopped. Register it before writing and before restoring a
     /// checkpoint; registering a name again replaces the type.
     pub fn keep_in_checkpoints<R: Resource + Serialize + DeserializeOwned>(&mut self, name: &str) {
-        self.kept.keep::<R>(name);
+        self.kept.keep_resource::<R>(name);
+    }
+
+    /// Makes checkpoints carry the component `C` that user systems keep on
+    /// the bodies and blocks (e.g. a field of their own per point, or a
+    /// block's controller), under `name`, wherever it is at the
+    /// checkpoint: restoring puts it on the same bodies and blocks and
+    /// removes it from the others. Register it before writing and before
+    /// restoring a checkpoint; registering a name again replaces the type.
+    /// Components on entities the user spawned are not carried.
+    pub fn keep_components_in_checkpoints<C: Component + Serialize + DeserializeOwned>(
+        &mut self,
+        name: &str,
+    ) {
+        self.kept.keep_component::<C>(name);
     }
 
     /// The scene's name.

@@ -2,7 +2,7 @@
 //! and resumed continues bit-identically to the run that never stopped,
 //! through block and body contacts, dynamic blocks, stages (their end
 //! conditions, surcharges, blocks they add or remove) and a later end
-//! time, and with the resources user systems registered; a checkpoint of
+//! time, and with the resources and components user systems registered; a checkpoint of
 //! another scene, or a file that is not one, is refused with its path.
 
 mod common;
@@ -417,7 +417,7 @@ fn a_user_resource_registered_for_checkpoints_resumes_bit_identically() {
             .restore_checkpoint(&scene, written)
             .expect_err("refused")
             .to_string();
-        assert!(message.contains("user resources"), "{message}");
+        assert!(message.contains("user state"), "{message}");
     }
     // So is restoring into a simulation that has stepped.
     let mut stepped = controlled(&scene, true);
@@ -435,4 +435,130 @@ fn a_user_resource_registered_for_checkpoints_resumes_bit_identically() {
         .expect_err("refused")
         .to_string();
     assert!(message.contains("another scene"), "{message}");
+}
+
+/// A user field on a body, one value per point: each point's displacement
+/// along x integrated from its velocity, and the tether force −k u last
+/// applied to it, so the run depends on the field's whole history.
+#[derive(Component, Clone, PartialEq, Debug, serde::Serialize, serde::Deserialize)]
+struct Tether {
+    displacement: Vec<Real>,
+    applied: Vec<Real>,
+}
+
+/// Replaces last step's tether force on every point by −k u.
+fn tether(clock: Res<Clock>, mut bodies: Query<(&mut MaterialPoints, &mut Tether)>) {
+    for (mut points, mut tether) in &mut bodies {
+        let Tether {
+            displacement,
+            applied,
+        } = &mut *tether;
+        let MaterialPoints {
+            velocity,
+            external_force,
+            ..
+        } = &mut *points;
+        for (((u, f_old), v), f) in displacement
+            .iter_mut()
+            .zip(applied.iter_mut())
+            .zip(velocity.iter())
+            .zip(external_force.iter_mut())
+        {
+            *u += v.x * clock.dt;
+            let force = -2e3 * *u;
+            f.x += force - *f_old;
+            *f_old = force;
+        }
+    }
+}
+
+/// The wave bar with the tether system; the field is put on the bar when
+/// `fielded` and kept in checkpoints when `kept`.
+fn tethered(scene: &Scene, fielded: bool, kept: bool) -> Simulation {
+    let mut sim = build(scene);
+    if fielded {
+        let (bar, _) = sim.bodies()[0].clone();
+        let n = sim
+            .world()
+            .get::<MaterialPoints>(bar)
+            .map_or(0, |p| p.len());
+        sim.world_mut().entity_mut(bar).insert(Tether {
+            displacement: vec![0.0; n],
+            applied: vec![0.0; n],
+        });
+    }
+    sim.add_systems(tether.in_set(MpmSystems::Boundary))
+        .unwrap_or_else(|e| panic!("{e}"));
+    if kept {
+        sim.keep_components_in_checkpoints::<Tether>("tether");
+    }
+    sim
+}
+
+fn the_tether(sim: &mut Simulation) -> Option<Tether> {
+    let bar = sim.bodies()[0].0;
+    sim.world().get::<Tether>(bar).cloned()
+}
+
+#[test]
+fn a_user_component_registered_for_checkpoints_resumes_bit_identically() {
+    let mut scene = common::load_scene("wave_1d.ron");
+    scene.time.end = 0.03;
+    let mut straight = tethered(&scene, true, true);
+    straight.run().unwrap_or_else(|e| panic!("{e}"));
+
+    let file = checkpoint_file("tether");
+    let mut first = tethered(&scene, true, true);
+    step_to(&mut first, 120);
+    first
+        .write_checkpoint(&file)
+        .unwrap_or_else(|e| panic!("{e}"));
+    // The field is not put on the bar before restoring: the checkpoint
+    // puts it there.
+    let mut resumed = tethered(&scene, false, true);
+    resumed
+        .restore_checkpoint(&scene, &file)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(the_tether(&mut resumed), the_tether(&mut first));
+    resumed.run().unwrap_or_else(|e| panic!("{e}"));
+    assert_same_run(&mut resumed, &mut straight);
+    assert_eq!(the_tether(&mut resumed), the_tether(&mut straight));
+
+    // Without it, a resumed run that starts the field afresh differs: the
+    // test can tell the two apart.
+    let unkept = checkpoint_file("tether-unkept");
+    let mut first = tethered(&scene, true, false);
+    step_to(&mut first, 120);
+    first
+        .write_checkpoint(&unkept)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut fresh = tethered(&scene, true, false);
+    fresh
+        .restore_checkpoint(&scene, &unkept)
+        .unwrap_or_else(|e| panic!("{e}"));
+    fresh.run().unwrap_or_else(|e| panic!("{e}"));
+    assert_ne!(fresh.state_hash(), straight.state_hash());
+
+    // A checkpoint whose bar had no field removes one put on before
+    // restoring: the resumed run is the one that was written.
+    let bare = checkpoint_file("tether-bare");
+    let mut first = tethered(&scene, false, true);
+    step_to(&mut first, 120);
+    first
+        .write_checkpoint(&bare)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut restored = tethered(&scene, true, true);
+    restored
+        .restore_checkpoint(&scene, &bare)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(the_tether(&mut restored), None);
+
+    // A name kept as a component but stored as a resource is refused.
+    let mut mixed = build(&scene);
+    mixed.keep_in_checkpoints::<Controller>("tether");
+    let message = mixed
+        .restore_checkpoint(&scene, &file)
+        .expect_err("refused")
+        .to_string();
+    assert!(message.contains("stored as a component"), "{message}");
 }

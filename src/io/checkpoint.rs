@@ -12,9 +12,11 @@
 //! a checkpoint resumes only the scene it was written for: its name,
 //! `time.end` and `output` may change, nothing else. Scratch buffers and
 //! the layers' node windows are not kept: they do not change the results.
-//! Resources that user systems keep are carried once registered
-//! ([`crate::Simulation::keep_in_checkpoints`]); state in components of
-//! their own is not.
+//! State that user systems keep, in resources or in components on the
+//! bodies and blocks, is carried once registered
+//! ([`crate::Simulation::keep_in_checkpoints`],
+//! [`crate::Simulation::keep_components_in_checkpoints`]); components on
+//! entities of their own are not.
 //!
 //! The file is binary: eight magic bytes, the layout's number (`u32`,
 //! little-endian), then the state (`postcard`), every real number stored
@@ -24,7 +26,7 @@ use crate::components::{
     BlockContacts, BlockId, MaterialPoints, NeighbourList, PartReactions, Pose, Reaction,
     RigidMotion, RigidVelocity, StepTravel, bodies_in_scene_order,
 };
-use crate::io::kept_resources::{KeptResources, StoredResource};
+use crate::io::kept_state::{Holder, KeptState, StoredState};
 use crate::io::state_hash::StateHasher;
 use crate::math::Real;
 use crate::resources::{
@@ -44,7 +46,7 @@ const MAGIC: &[u8; 8] = b"MPDEMCK\0";
 
 /// The layout of the stored state; a checkpoint of another layout is
 /// refused rather than misread.
-const FORMAT: u32 = 3;
+const FORMAT: u32 = 4;
 
 /// Why a checkpoint could not be written or resumed.
 #[derive(Debug, thiserror::Error)]
@@ -122,8 +124,8 @@ struct RunState {
     block_log: BlockLog,
     body_pairs: BodyPairLog,
     stages: Option<StageProgress>,
-    /// The user resources registered to be kept, by name.
-    user: Vec<StoredResource>,
+    /// The user state registered to be kept, by name.
+    user: Vec<StoredState>,
 }
 
 /// One block's changing state.
@@ -157,13 +159,16 @@ pub fn scene_fingerprint(scene: &Scene) -> u64 {
 pub fn write_checkpoint(
     world: &mut World,
     fingerprint: u64,
-    kept: &KeptResources,
+    kept: &KeptState,
     path: &Path,
 ) -> Result<(), CheckpointError> {
-    let user = kept.save(world).map_err(|detail| CheckpointError::Encode {
-        path: path.to_path_buf(),
-        detail,
-    })?;
+    let holders = holders(world);
+    let user = kept
+        .save(world, &holders)
+        .map_err(|detail| CheckpointError::Encode {
+            path: path.to_path_buf(),
+            detail,
+        })?;
     let state = capture(world, fingerprint, user);
     let mut bytes = MAGIC.to_vec();
     bytes.extend_from_slice(&FORMAT.to_le_bytes());
@@ -190,13 +195,13 @@ pub fn write_checkpoint(
 }
 
 /// Puts the state stored in `path` into `world`, freshly spawned from the
-/// scene whose fingerprint is `fingerprint`, with the user resources of
+/// scene whose fingerprint is `fingerprint`, with the user state of
 /// `kept`.
 pub fn restore_checkpoint(
     world: &mut World,
     scene: &Scene,
     fingerprint: u64,
-    kept: &KeptResources,
+    kept: &KeptState,
     path: &Path,
 ) -> Result<(), CheckpointError> {
     let format_error = |detail: String| CheckpointError::Format {
@@ -241,7 +246,7 @@ pub fn restore_checkpoint(
     apply(world, scene, state, kept, &bodies).map_err(format_error)
 }
 
-fn capture(world: &mut World, fingerprint: u64, user: Vec<StoredResource>) -> RunState {
+fn capture(world: &mut World, fingerprint: u64, user: Vec<StoredState>) -> RunState {
     let bodies = bodies_in_scene_order(world)
         .into_iter()
         .filter_map(|e| {
@@ -306,18 +311,22 @@ fn apply(
     world: &mut World,
     scene: &Scene,
     state: RunState,
-    kept: &KeptResources,
+    kept: &KeptState,
     bodies: &[Entity],
 ) -> Result<(), String> {
     // First what can be refused without having changed the world: the
-    // stages, and the user resources (all decoded before any is put in). A
-    // block the scene lacks is found after the points are in: a world whose
-    // restore failed is to be discarded.
+    // stages, and the user state (all decoded before any is put in, once
+    // the blocks are). A block the scene lacks is found after the points
+    // are in: a world whose restore failed is to be discarded.
     let planned = world.contains_resource::<StagePlan>();
     if planned != state.stages.is_some() {
         return Err("its stages are not the scene's".into());
     }
-    kept.load(world, state.user)?;
+    let stored_holders: Vec<Holder> = (0..state.bodies.len() as u32)
+        .map(Holder::Body)
+        .chain(state.blocks.iter().map(|b| Holder::Block(b.index)))
+        .collect();
+    let user = kept.decode(state.user, &stored_holders)?;
     {
         let mut clock = world.resource_mut::<Clock>();
         clock.step = state.step;
@@ -330,6 +339,8 @@ fn apply(
         world.entity_mut(entity).insert((points, travel));
     }
     restore_blocks(world, scene, state.blocks, bodies)?;
+    let holders = holders(world);
+    user.insert(world, &holders);
     *world.resource_mut::<BlockContactHistory>() = state.block_springs;
     {
         let mut contacts = world.resource_mut::<BodyContacts>();
@@ -396,6 +407,23 @@ fn carry_on_a_stage_cut_short(world: &mut World, progress: &mut StageProgress) {
 
 /// Makes the blocks present those of the checkpoint (stages may have added
 /// or removed some), then gives each its stored state.
+/// The world's bodies and blocks, each named by its index in the scene.
+fn holders(world: &mut World) -> Vec<(Holder, Entity)> {
+    let bodies = bodies_in_scene_order(world);
+    let mut holders: Vec<(Holder, Entity)> = (0..)
+        .map(Holder::Body)
+        .zip(bodies)
+        .chain(
+            world
+                .query::<(Entity, &BlockId)>()
+                .iter(world)
+                .map(|(e, id)| (Holder::Block(id.index), e)),
+        )
+        .collect();
+    holders.sort_unstable_by_key(|&(holder, _)| holder);
+    holders
+}
+
 fn restore_blocks(
     world: &mut World,
     scene: &Scene,
