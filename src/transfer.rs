@@ -34,7 +34,8 @@ pub const CHUNK_POINTS: usize = 1024;
 
 /// The order in which the scatters of a step visit a body's points: by the
 /// grid row of their stencil's base node, and within a row in stored order
-/// (a stable counting sort, so the order depends on the positions only).
+/// (a stable counting sort: the order follows from the positions and the
+/// stored order, never from the number of threads).
 ///
 /// A body's points are stored in the order they were generated, row by row,
 /// so chunks of stored points start as thin strips. Once a flow has mixed
@@ -67,7 +68,14 @@ impl ScatterOrder {
         let mut in_row_order = true;
         let mut previous = 0;
         for s in stencils {
-            self.rows[(s.base[1] - low) as usize] += 1;
+            let row = s.base[1].checked_sub(low).map(|r| r as usize);
+            let Some(count) = row.and_then(|r| self.rows.get_mut(r)) else {
+                panic!(
+                    "a stencil at row {} lies outside the layer's stored nodes {window:?}",
+                    s.base[1]
+                );
+            };
+            *count += 1;
             in_row_order &= s.base[1] >= previous;
             previous = s.base[1];
         }
@@ -209,7 +217,9 @@ impl<T: Copy + Default> Patch<T> {
     /// patch that outgrows its buffer gets room for rows `widest` nodes long
     /// (the layer window's width, which no patch exceeds): as a body spreads
     /// sideways its patches widen, and they should not reallocate at each
-    /// widening.
+    /// widening. Room never written (a contact group's window can be much
+    /// wider than one body) takes address space, not memory: the system
+    /// gives a page only when it is first written.
     fn cover<'a>(&mut self, stencils: impl Iterator<Item = &'a Stencil>, widest: usize) {
         let mut lo = [u32::MAX; 2];
         let mut hi = [0u32; 2];
@@ -336,5 +346,59 @@ mod tests {
             sorted <= n.div_ceil(CHUNK_POINTS) * 9 * (columns + 2),
             "{sorted}"
         );
+    }
+
+    /// The order is a permutation of the points, stable by row, through
+    /// mixed and ordered steps, a shorter body and a window that does not
+    /// start at row 0.
+    #[test]
+    fn the_order_is_a_stable_permutation_by_row() {
+        let at_row = |row: u32| Stencil {
+            base: [4, row],
+            ..Stencil::default()
+        };
+        let window = NodeRect {
+            start: [0, 10],
+            end: [20, 20],
+        };
+        let check = |order: &ScatterOrder, stencils: &[Stencil]| {
+            let points = order.points();
+            let mut seen = vec![false; stencils.len()];
+            for &p in points {
+                assert!(!std::mem::replace(&mut seen[p as usize], true), "{p} twice");
+            }
+            assert!(seen.iter().all(|&s| s), "not every point: {points:?}");
+            for pair in points.windows(2) {
+                let (a, b) = (pair[0] as usize, pair[1] as usize);
+                let (ra, rb) = (stencils[a].base[1], stencils[b].base[1]);
+                assert!(ra < rb || (ra == rb && a < b), "{points:?}");
+            }
+        };
+        let mut order = ScatterOrder::default();
+        for rows in [
+            vec![13, 11, 13, 12, 11, 17],
+            vec![11, 11, 12, 13, 13, 17],
+            vec![12, 11, 19],
+            vec![10, 10],
+            vec![],
+        ] {
+            let stencils: Vec<Stencil> = rows.into_iter().map(at_row).collect();
+            order.sort_by_row(&stencils, window);
+            check(&order, &stencils);
+        }
+    }
+
+    #[test]
+    #[should_panic(expected = "outside the layer's stored nodes")]
+    fn a_stencil_outside_the_window_is_refused_clearly() {
+        let window = NodeRect {
+            start: [0, 10],
+            end: [20, 20],
+        };
+        let stray = Stencil {
+            base: [4, 9],
+            ..Stencil::default()
+        };
+        ScatterOrder::default().sort_by_row(&[stray], window);
     }
 }

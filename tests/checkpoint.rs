@@ -553,7 +553,7 @@ fn a_user_component_registered_for_checkpoints_resumes_bit_identically() {
         .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(the_tether(&mut restored), None);
 
-    // A name kept as a component but stored as a resource is refused.
+    // A name stored as a component but kept as a resource is refused.
     let mut mixed = build(&scene);
     mixed.keep_in_checkpoints::<Controller>("tether");
     let message = mixed
@@ -561,4 +561,94 @@ fn a_user_component_registered_for_checkpoints_resumes_bit_identically() {
         .expect_err("refused")
         .to_string();
     assert!(message.contains("stored as a component"), "{message}");
+}
+
+/// A user count on bodies and blocks, one more every step.
+#[derive(Component, Clone, Copy, PartialEq, Debug, serde::Serialize, serde::Deserialize)]
+struct Count(u64);
+
+fn count(mut counts: Query<&mut Count>) {
+    for mut c in &mut counts {
+        c.0 += 1;
+    }
+}
+
+/// The reduced pile with the count system, the count put on the soil and
+/// the pile when `counted`, and kept in checkpoints when `kept`.
+fn counted_pile(scene: &Scene, counted: bool, kept: bool) -> Simulation {
+    let mut sim = build(scene);
+    if counted {
+        let soil = sim.bodies()[0].0;
+        let pile = the_pile(&mut sim).expect("the pile is present");
+        sim.world_mut().entity_mut(soil).insert(Count(0));
+        sim.world_mut().entity_mut(pile).insert(Count(0));
+    }
+    sim.add_systems(count.in_set(MpmSystems::Boundary))
+        .unwrap_or_else(|e| panic!("{e}"));
+    if kept {
+        sim.keep_components_in_checkpoints::<Count>("count");
+    }
+    sim
+}
+
+fn the_pile(sim: &mut Simulation) -> Option<Entity> {
+    let world = sim.world_mut();
+    let mut blocks = world.query::<(Entity, &BlockId)>();
+    blocks
+        .iter(world)
+        .find(|(_, id)| id.name == "pile")
+        .map(|(e, _)| e)
+}
+
+/// The counts on the soil and on the pile (None where there is none).
+fn counts(sim: &mut Simulation) -> (Option<Count>, Option<Count>) {
+    let soil = sim.bodies()[0].0;
+    let pile = the_pile(sim);
+    let world = sim.world();
+    (
+        world.get::<Count>(soil).copied(),
+        pile.and_then(|p| world.get::<Count>(p).copied()),
+    )
+}
+
+#[test]
+fn user_components_follow_the_bodies_and_the_blocks_a_stage_removes() {
+    let scene = reduced_pile();
+    let mut run = counted_pile(&scene, true, true);
+    let driven = checkpoint_file("count-driven");
+    let pulled = checkpoint_file("count-pulled");
+    step_into_stage(&mut run, 2, 10);
+    run.write_checkpoint(&driven).expect("checkpoint");
+    let while_driven = counts(&mut run);
+    step_into_stage(&mut run, 3, 5);
+    run.write_checkpoint(&pulled).expect("checkpoint");
+    let once_pulled = counts(&mut run);
+    assert!(while_driven.0.is_some() && while_driven.1.is_some());
+    assert!(
+        once_pulled.0.is_some() && once_pulled.1.is_none(),
+        "{once_pulled:?}"
+    );
+
+    // Restored onto the soil and onto the pile, put there by nothing else.
+    let mut restored = counted_pile(&scene, false, true);
+    restored
+        .restore_checkpoint(&scene, &driven)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(counts(&mut restored), while_driven);
+    // Once the stage has removed the pile, only the soil's count returns.
+    let mut restored = counted_pile(&scene, true, true);
+    restored
+        .restore_checkpoint(&scene, &pulled)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(counts(&mut restored), once_pulled);
+
+    // A refused restore leaves the simulation as it was built.
+    let mut unkept = counted_pile(&scene, true, false);
+    let message = unkept
+        .restore_checkpoint(&scene, &driven)
+        .expect_err("refused")
+        .to_string();
+    assert!(message.contains("user state"), "{message}");
+    assert_eq!(unkept.clock().step, 0);
+    assert_eq!(counts(&mut unkept), (Some(Count(0)), Some(Count(0))));
 }

@@ -405,8 +405,6 @@ fn carry_on_a_stage_cut_short(world: &mut World, progress: &mut StageProgress) {
     }
 }
 
-/// Makes the blocks present those of the checkpoint (stages may have added
-/// or removed some), then gives each its stored state.
 /// The world's bodies and blocks, each named by its index in the scene.
 fn holders(world: &mut World) -> Vec<(Holder, Entity)> {
     let bodies = bodies_in_scene_order(world);
@@ -424,6 +422,8 @@ fn holders(world: &mut World) -> Vec<(Holder, Entity)> {
     holders
 }
 
+/// Makes the blocks present those of the checkpoint (stages may have added
+/// or removed some), then gives each its stored state.
 fn restore_blocks(
     world: &mut World,
     scene: &Scene,

@@ -63,7 +63,8 @@ impl KeptState {
     /// Registers the resource type `R` under `name`, replacing an earlier
     /// registration of that name. Register user resources only: the
     /// engine's own (clock, settings, records) are restored by the
-    /// checkpoint itself, after the user state.
+    /// checkpoint itself, and one registered too could be overwritten by
+    /// either copy.
     pub fn keep_resource<R: Resource + Serialize + DeserializeOwned>(&mut self, name: &str) {
         self.register(name, encode_resource::<R>, decode_resource::<R>);
     }
@@ -128,12 +129,17 @@ impl KeptState {
             .iter()
             .zip(&stored)
             .map(|(kept, (name, stored))| {
-                if let Stored::Components(values) = stored
-                    && let Some((holder, _)) = values.iter().find(|(h, _)| !holders.contains(h))
-                {
-                    return Err(format!(
-                        "user state '{name}' is on {holder:?}, which the checkpoint does not hold"
-                    ));
+                if let Stored::Components(values) = stored {
+                    if let Some((holder, _)) = values.iter().find(|(h, _)| !holders.contains(h)) {
+                        return Err(format!(
+                            "user state '{name}' is on {holder:?}, which the checkpoint does not hold"
+                        ));
+                    }
+                    if values.windows(2).any(|pair| pair[0].0 >= pair[1].0) {
+                        return Err(format!(
+                            "user state '{name}' is stored twice on one body or block, or out of order"
+                        ));
+                    }
                 }
                 (kept.decode)(stored).map_err(|e| format!("user state '{name}': {e}"))
             })
@@ -216,9 +222,10 @@ fn decode_component<C: Component + DeserializeOwned>(stored: &Stored) -> Result<
             world.entity_mut(entity).remove::<C>();
         }
         for (holder, component) in decoded {
-            if let Some(&(_, entity)) = holders.iter().find(|(h, _)| *h == holder) {
-                world.entity_mut(entity).insert(component);
-            }
+            let Some(&(_, entity)) = holders.iter().find(|(h, _)| *h == holder) else {
+                panic!("{holder:?} was checked to be in the checkpoint, and is not in the world");
+            };
+            world.entity_mut(entity).insert(component);
         }
     }))
 }
