@@ -1,8 +1,9 @@
 //! End of the step: finiteness check, clock, probes, energies, blocks and body pairs.
 
 use crate::components::{
-    BlockContactLaw, BlockContacts, BlockId, BodyIndex, BodyName, Material, MaterialPoints,
-    PartReactions, PointEnergies, Pose, Reaction, RigidVelocity, sort_into_scene_order,
+    BlockContactLaw, BlockContacts, BlockId, BodyIndex, BodyName, DampedEnergy, Material,
+    MaterialPoints, PartReactions, PointEnergies, Pose, Reaction, RigidVelocity,
+    sort_into_scene_order,
 };
 use crate::resources::{
     BlockLog, BlockPartSample, BlockSample, BodyContacts, BodyPairLog, BodyPairSample, Clock,
@@ -104,7 +105,8 @@ type EnergyScratch = (
 ///
 /// Reads: `Clock`, `Diagnostics`, `Gravity`, `MaterialPoints`, `Material`,
 /// `BodyIndex`, `BodyContacts`, `BlockContacts` and `BlockContactLaw` (the
-/// contact springs' energy), `ContactWork`. Writes: `Probes`, `EnergyLog`.
+/// contact springs' energy), `ContactWork`, `DampedEnergy`. Writes: `Probes`,
+/// `EnergyLog`.
 #[allow(clippy::too_many_arguments)] // one resource or query per energy term
 pub fn record_probes_and_energy(
     clock: Res<Clock>,
@@ -115,7 +117,13 @@ pub fn record_probes_and_energy(
     body_contacts: Res<BodyContacts>,
     work: Res<ContactWork>,
     mut scratch: Local<EnergyScratch>,
-    bodies: Query<(Entity, &BodyIndex, &MaterialPoints, &Material)>,
+    bodies: Query<(
+        Entity,
+        &BodyIndex,
+        &MaterialPoints,
+        &Material,
+        &DampedEnergy,
+    )>,
     blocks: Query<(Entity, &BlockId, &BlockContacts, &BlockContactLaw)>,
 ) {
     if diagnostics.failure.is_some() || !clock.step.is_multiple_of(probes.every.max(1)) {
@@ -123,12 +131,10 @@ pub fn record_probes_and_energy(
     }
     let (order, sums, block_order) = &mut *scratch;
     probes.record(clock.time, |entity| bodies.get(entity).ok().map(|b| b.2));
-    sort_into_scene_order(order, bodies.iter().map(|(e, i, _, _)| (*i, e)));
-    let ordered = order
-        .iter()
-        .filter_map(|(_, e)| bodies.get(*e).ok())
-        .map(|b| (b.2, b.3));
-    let mut sample = EnergySample::of(clock.time, ordered, gravity.0, sums);
+    sort_into_scene_order(order, bodies.iter().map(|(e, i, ..)| (*i, e)));
+    let ordered = || order.iter().filter_map(|(_, e)| bodies.get(*e).ok());
+    let mut sample = EnergySample::of(clock.time, ordered().map(|b| (b.2, b.3)), gravity.0, sums);
+    sample.damped = ordered().map(|b| b.4.0).sum();
     sort_into_scene_order(block_order, blocks.iter().map(|(e, id, ..)| (id.index, e)));
     let (mut springs, mut tangential) = body_contacts.spring_energies();
     for (_, _, contacts, law) in block_order.iter().filter_map(|(_, e)| blocks.get(*e).ok()) {

@@ -1,7 +1,9 @@
 //! Algorithm 1, line 16: velocity and position of the points (eqs. 11a/11b,
 //! or XPIC, eqs. 12a/12b).
 
-use crate::components::{GridLayer, MaterialPoints, StepTravel, TransferScratch, XpicScratch};
+use crate::components::{
+    DampedEnergy, GridLayer, MaterialPoints, StepTravel, TransferScratch, XpicScratch,
+};
 use crate::math::{DVec2, Real, local_damping};
 use crate::resources::{Clock, Grid, PositionUpdate, Settings};
 use crate::shape_functions::Stencil;
@@ -30,7 +32,8 @@ use rayon::prelude::*;
 ///
 /// Reads: `Grid`, `Settings`, `Clock`, `GridLayer`, `TransferScratch::stencils`
 /// and `order`.
-/// Writes: `MaterialPoints` (position, velocity), `TransferScratch::xpic`,
+/// Writes: `MaterialPoints` (position, velocity), `TransferScratch::xpic`
+/// and `damped`, `DampedEnergy` (what the update took from the points),
 /// `StepTravel` (the largest |x^{n+1} − x^n|, a maximum, so exact for any
 /// thread count).
 pub fn grid_to_particle(
@@ -40,6 +43,7 @@ pub fn grid_to_particle(
     mut bodies: Query<(
         &mut MaterialPoints,
         &mut StepTravel,
+        &mut DampedEnergy,
         &GridLayer,
         &mut TransferScratch,
     )>,
@@ -47,14 +51,18 @@ pub fn grid_to_particle(
     let (lo, hi) = grid.wall_bounds();
     let (dt, beta, alpha) = (clock.dt, settings.pic_fraction, settings.particle_damping);
     let forward = settings.position_update == PositionUpdate::Forward;
-    for (mut points, mut travel, layer, mut scratch) in &mut bodies {
+    let order = settings.xpic_order.unwrap_or(0);
+    // Undamped pure FLIP gives the FLIP update itself, bit for bit: nothing
+    // is taken, and nothing needs counting.
+    let takes = beta != 0.0 || alpha != 0.0 || order >= 1;
+    for (mut points, mut travel, mut damped, layer, mut scratch) in &mut bodies {
         let TransferScratch {
             stencils,
             order: scatter_order,
+            damped: taken,
             xpic,
             ..
         } = &mut *scratch;
-        let order = settings.xpic_order.unwrap_or(0);
         if order >= 1 {
             let transfer = (&stencils[..], &*scatter_order);
             xpic_velocities(order, &points.mass, layer, transfer, xpic);
@@ -62,18 +70,24 @@ pub fn grid_to_particle(
         let window = layer.window();
         let (origin, row_len) = (window.start.map(|k| k as u32), window.width());
         let MaterialPoints {
-            position, velocity, ..
+            position,
+            velocity,
+            mass,
+            ..
         } = &mut *points;
         let nodes = layer.nodes();
         let star = &xpic.star;
+        taken.resize(position.len(), 0.0);
         travel.0 = (
             position.par_iter_mut(),
             velocity.par_iter_mut(),
             stencils.par_iter(),
+            mass.par_iter(),
         )
             .into_par_iter()
             .with_min_len(MIN_POINTS_PER_TASK)
-            .map(|(x, v, stencil)| {
+            .zip(taken.par_iter_mut())
+            .map(|((x, v, stencil, m), taken)| {
                 let zero = (DVec2::ZERO, DVec2::ZERO);
                 let (grid_old, grid_new) =
                     stencil.gather(nodes, origin, row_len, zero, |(old, new), node, w, _| {
@@ -81,6 +95,7 @@ pub fn grid_to_particle(
                     });
                 // At α = 0 this is the undamped change, bit for bit.
                 let change = local_damping(grid_new - grid_old, *v, alpha);
+                let flip = *v + (grid_new - grid_old);
                 let step = if order >= 1 {
                     let smoothed =
                         stencil.gather(star, origin, row_len, DVec2::ZERO, |acc, u, w, _| {
@@ -105,6 +120,9 @@ pub fn grid_to_particle(
                     *v = (1.0 - beta) * (*v + change) + beta * pic;
                     step
                 };
+                if takes {
+                    *taken = 0.5 * m * (flip.length_squared() - v.length_squared());
+                }
                 let (before, moved) = (*x, *x + step);
                 *x = moved.clamp(lo, hi);
                 if x.x != moved.x {
@@ -116,6 +134,10 @@ pub fn grid_to_particle(
                 (*x - before).length()
             })
             .reduce(|| 0.0, Real::max);
+        if takes {
+            // In point order, on one thread: the same sum for any thread count.
+            damped.0 += taken.iter().sum::<Real>();
+        }
     }
 }
 

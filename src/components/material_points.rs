@@ -54,6 +54,18 @@ impl std::ops::Add for PointEnergies {
 #[derive(Component, Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct StepTravel(pub Real);
 
+/// Energy that damping and the velocity update's PIC (or XPIC) part have
+/// taken from the body since the start of the run (J/m), for the energy
+/// balance ([`crate::resources::EnergySample::damped`]):
+/// * at the points, every step, Σ ½ m_p (|V_p + a_p Δt|² − |V_p^{n+1}|²):
+///   what the update took against the undamped FLIP update (particle
+///   damping, the PIC fraction, XPIC's smoothing);
+/// * at the nodes, with grid damping, −Σ_i d_i · ½(v_i^n + v_i^{n+1}) Δt,
+///   d_i the damping force; a contact group's shared nodes are counted on
+///   its first member only.
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct DampedEnergy(pub Real);
+
 /// Every point of one body, one column per field. All columns have the same
 /// length; index p is the same point in every column. Points keep their
 /// order for the whole run, so an index identifies a point.

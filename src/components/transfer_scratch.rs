@@ -41,6 +41,9 @@ pub struct TransferScratch {
     pub mass_momentum: Scatter<MassMomentumForce>,
     /// Patches of the internal force scatter.
     pub internal_force: Scatter<DVec2>,
+    /// Each point's energy taken by this step's velocity update (see
+    /// [`crate::components::DampedEnergy`]), sized on first use.
+    pub damped: Vec<Real>,
     /// Work space of XPIC (eq. 12), sized on first use.
     pub xpic: XpicScratch,
 }

@@ -23,8 +23,8 @@
 //! exactly.
 
 use crate::components::{
-    BlockContacts, BlockId, MaterialPoints, NeighbourList, PartReactions, Pose, Reaction,
-    RigidMotion, RigidVelocity, StepTravel, bodies_in_scene_order,
+    BlockContacts, BlockId, DampedEnergy, MaterialPoints, NeighbourList, PartReactions, Pose,
+    Reaction, RigidMotion, RigidVelocity, StepTravel, bodies_in_scene_order,
 };
 use crate::io::kept_state::{Holder, KeptState, StoredState};
 use crate::io::state_hash::StateHasher;
@@ -46,7 +46,7 @@ const MAGIC: &[u8; 8] = b"MPDEMCK\0";
 
 /// The layout of the stored state; a checkpoint of another layout is
 /// refused rather than misread.
-const FORMAT: u32 = 4;
+const FORMAT: u32 = 5;
 
 /// Why a checkpoint could not be written or resumed.
 #[derive(Debug, thiserror::Error)]
@@ -110,8 +110,8 @@ struct RunState {
     /// never removed, so a rebuilt world gives them the same entities,
     /// which the neighbour lists and loads refer to), its points and how
     /// far they moved in the last step (the neighbour lists' next
-    /// rebuild depends on it).
-    bodies: Vec<(Entity, MaterialPoints, StepTravel)>,
+    /// rebuild depends on it) and the energy damping has taken from it.
+    bodies: Vec<(Entity, MaterialPoints, StepTravel, DampedEnergy)>,
     /// The blocks present, in scene order.
     blocks: Vec<BlockState>,
     block_springs: BlockContactHistory,
@@ -251,7 +251,8 @@ fn capture(world: &mut World, fingerprint: u64, user: Vec<StoredState>) -> RunSt
         .into_iter()
         .filter_map(|e| {
             let travel = world.get::<StepTravel>(e).copied().unwrap_or_default();
-            Some((e, world.get::<MaterialPoints>(e)?.clone(), travel))
+            let damped = world.get::<DampedEnergy>(e).copied().unwrap_or_default();
+            Some((e, world.get::<MaterialPoints>(e)?.clone(), travel, damped))
         })
         .collect();
     let mut blocks: Vec<BlockState> = world
@@ -335,8 +336,8 @@ fn apply(
     *world.resource_mut::<Settings>() = state.settings;
     *world.resource_mut::<Gravity>() = state.gravity;
     world.resource_mut::<Grid>().edges = state.edges;
-    for (entity, points, travel) in state.bodies {
-        world.entity_mut(entity).insert((points, travel));
+    for (entity, points, travel, damped) in state.bodies {
+        world.entity_mut(entity).insert((points, travel, damped));
     }
     restore_blocks(world, scene, state.blocks, bodies)?;
     let holders = holders(world);

@@ -29,21 +29,21 @@ pub fn write_probes(path: &Path, probes: &Probes) -> std::io::Result<()> {
 }
 
 /// Writes `energy.csv`: time, kinetic, strain, contact, total, gravity,
-/// dissipated, balance (J per metre of thickness). `total` sums the
+/// dissipated, damped, balance (J per metre of thickness). `total` sums the
 /// kinetic, strain and contact (the point contacts' springs) energies,
-/// conserved by free elastic bodies; `balance` adds gravity's potential and
-/// what the contacts dissipated (see
+/// conserved by free elastic bodies; `balance` adds gravity's potential,
+/// what the contacts dissipated and what damping and the PIC part took (see
 /// [`crate::resources::EnergySample::balance`] for what it still leaves out).
 pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     writeln!(
         out,
-        "time,kinetic,strain,contact,total,gravity,dissipated,balance"
+        "time,kinetic,strain,contact,total,gravity,dissipated,damped,balance"
     )?;
     for s in &energy.samples {
         writeln!(
             out,
-            "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+            "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
             s.time,
             s.kinetic,
             s.strain,
@@ -51,6 +51,7 @@ pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
             s.total(),
             s.gravity,
             s.dissipated,
+            s.damped,
             s.balance()
         )?;
     }

@@ -280,7 +280,7 @@ impl RunOutput {
                     style: SeriesStyle::Line,
                 },
                 Series {
-                    name: "total + gravity + dissipated",
+                    name: "total + gravity + dissipated + damped",
                     points: &balance,
                     style: SeriesStyle::Line,
                 },

@@ -96,11 +96,16 @@ pub struct EnergySample {
     /// stretching by the material velocity where it differs from the actual
     /// motion. The normal dashpot's work (`normal_damping`) is not in it.
     pub dissipated: Real,
+    /// Energy grid and particle damping and the PIC (or XPIC) part of the
+    /// velocity update have taken from the bodies since the start (J/m;
+    /// [`crate::components::DampedEnergy`]).
+    pub damped: Real,
 }
 
 impl EnergySample {
     /// The energies of `bodies` (in scene order) at `time` under `gravity`,
-    /// without contacts (`contact` and `dissipated` zero); `scratch` is reused
+    /// without contacts and damping (`contact`, `dissipated` and `damped`
+    /// zero); `scratch` is reused
     /// between calls (see [`MaterialPoints::energies`]).
     pub fn of<'a>(
         time: Real,
@@ -118,6 +123,7 @@ impl EnergySample {
             contact: 0.0,
             gravity: sum.gravity,
             dissipated: 0.0,
+            damped: 0.0,
         }
     }
 
@@ -128,13 +134,14 @@ impl EnergySample {
         self.kinetic + self.strain + self.contact
     }
 
-    /// Total + gravity's potential + what the contacts dissipated (J/m):
-    /// constant for elastic bodies under constant gravity, touching each
-    /// other and fixed blocks, without damping, up to the MPM scheme's own
-    /// error. It leaves out the work of damping, of tractions, of moving
-    /// blocks and of the grid's boundaries, and the blocks' own energy.
+    /// Total + gravity's potential + what the contacts dissipated + what
+    /// damping and the PIC part took (J/m): constant for elastic bodies
+    /// under constant gravity, touching each other and fixed blocks, up to
+    /// the MPM scheme's own error. It leaves out the work of the contacts'
+    /// normal dashpots, of tractions, of moving blocks and of the grid's
+    /// boundaries, and the blocks' own energy.
     pub fn balance(&self) -> Real {
-        self.total() + self.gravity + self.dissipated
+        self.total() + self.gravity + self.dissipated + self.damped
     }
 }
 

@@ -2,8 +2,8 @@
 
 use super::{InitialStress, InitialVelocity, Scene, SceneError, SourceLocation, VelocityField};
 use crate::components::{
-    BodyIndex, BodyName, GridLayer, Material, MaterialPoints, NewPoint, RegionConstraint,
-    RegionConstraints, StepTravel, TransferScratch,
+    BodyIndex, BodyName, DampedEnergy, GridLayer, Material, MaterialPoints, NewPoint,
+    RegionConstraint, RegionConstraints, StepTravel, TransferScratch,
 };
 use crate::math::{DVec2, Real, SymTensor};
 use crate::resources::{
@@ -63,6 +63,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
                 GridLayer::new(grid.nodes(), 1e-9 * lightest),
                 TransferScratch::default(),
                 StepTravel::default(),
+                DampedEnergy::default(),
                 RegionConstraints(spec.constraints.clone()),
             ))
             .id();
