@@ -31,7 +31,7 @@ use rayon::prelude::*;
 /// into the wall removed.
 ///
 /// Reads: `Grid`, `Settings`, `Clock`, `GridLayer`, `TransferScratch::stencils`
-/// and `order`.
+/// and `order`, `MaterialPoints::mass`.
 /// Writes: `MaterialPoints` (position, velocity), `TransferScratch::xpic`
 /// and `damped`, `DampedEnergy` (what the update took from the points),
 /// `StepTravel` (the largest |x^{n+1} − x^n|, a maximum, so exact for any

@@ -77,8 +77,9 @@ fn particle_damping_acts_under_pic() {
 /// the PIC (or XPIC) part took, and what they took is half of gravity's
 /// work, the other half being stored as strain energy (a linear elastic
 /// body loaded quasi-statically from rest stores ½ W; the rest is lost to
-/// whatever stops it). Returns (largest |balance| over the run, taken −
-/// ½ |W_g| at the end), both relative to gravity's work |W_g| at the end.
+/// whatever stops it). Checks that it has come to rest, and returns
+/// (largest |balance| over the run, taken − ½ |W_g| at the end), both
+/// relative to gravity's work |W_g| at the end.
 fn settled_column(settings: Settings) -> (Real, Real) {
     let mut scene = common::load_scene("elastic_column.ron");
     scene.settings = settings;
@@ -95,14 +96,56 @@ fn settled_column(settings: Settings) -> (Real, Real) {
         "gravity's work {work:.5} J/m, strain {:.5}, damped {:.5}, kinetic {:.2e}, worst balance {worst:.2e}",
         last.strain, last.damped, last.kinetic
     );
+    assert!(
+        last.kinetic < 1e-6 * work,
+        "not at rest: {:.2e} J/m",
+        last.kinetic
+    );
     (worst / work, (last.damped - 0.5 * work) / work)
 }
 
 #[test]
+fn the_damped_energy_is_the_same_for_one_and_two_threads() {
+    // The bench's block, 40 000 points: many point chunks, so both
+    // threads take part in the parallel loops.
+    let mut scene = mpdem::bench::elastic_block_scene(40_000);
+    scene.settings = Settings {
+        particle_damping: 0.3,
+        pic_fraction: 0.5,
+        grid_damping: 0.1,
+        ..Settings::default()
+    };
+    scene.time.end = 30.0 * scene.time.dt;
+    scene.output.probe_interval = Some(scene.time.dt);
+    let energies = |threads| {
+        common::with_threads(threads, || {
+            let sim = common::run_scene(&scene);
+            let log = sim.world().resource::<mpdem::resources::EnergyLog>();
+            log.samples
+                .iter()
+                .map(|s| s.damped.to_bits())
+                .collect::<Vec<_>>()
+        })
+    };
+    let (one, two) = (energies(1), energies(2));
+    assert!(
+        one.last().is_some_and(|&d| f64::from_bits(d) > 0.0),
+        "nothing taken"
+    );
+    assert_eq!(
+        one, two,
+        "the damped energy differs between 1 and 2 threads"
+    );
+}
+
+#[test]
 fn damping_and_pic_take_half_of_gravitys_work_from_a_settling_column() {
-    // Tolerance 1% of gravity's work: what is left is the MPM scheme's own
-    // error (finite strain, transfers, the time step), largest in the
-    // column's first drop under the suddenly applied gravity. Measured: the
+    // Tolerances: what is left of the balance is the MPM scheme's own error
+    // (finite strain, transfers, the time step), largest in the column's
+    // first drop under the suddenly applied gravity: the same column
+    // without damping, which never settles, reaches 0.875% of W in its
+    // first 0.05 s (`settings: ()`, by hand), hence 1%. The half is taken
+    // at rest, where that transient error is gone: 0.5%. Measured: the
     // worst balance 0.71% / 0.69% / 0.55%, the half +0.009% / +0.17% /
     // +0.14%. Without the damped term the balance ends at −50%.
     let grid_damping = Settings {
@@ -132,8 +175,8 @@ fn damping_and_pic_take_half_of_gravitys_work_from_a_settling_column() {
             "{name}: the balance drifts by {balance:.3} of W"
         );
         assert!(
-            half.abs() < 0.01,
-            "{name}: damping took ½ W {half:+.3} of W"
+            half.abs() < 0.005,
+            "{name}: damping took ½ W {half:+.4} of W"
         );
     }
 }

@@ -59,7 +59,9 @@ pub struct StepTravel(pub Real);
 /// balance ([`crate::resources::EnergySample::damped`]):
 /// * at the points, every step, Σ ½ m_p (|V_p + a_p Δt|² − |V_p^{n+1}|²):
 ///   what the update took against the undamped FLIP update (particle
-///   damping, the PIC fraction, XPIC's smoothing);
+///   damping, the PIC fraction, XPIC's smoothing), before a point the
+///   update carried through a wall is put back on it (the velocity
+///   component then removed is the grid boundary's work, not counted);
 /// * at the nodes, with grid damping, −Σ_i d_i · ½(v_i^n + v_i^{n+1}) Δt,
 ///   d_i the damping force; a contact group's shared nodes are counted on
 ///   its first member only.

@@ -2,7 +2,8 @@
 //! long run can be resumed after a stop, or carried on to a later end
 //! time, and continue bit-identically to a run that never stopped.
 //!
-//! A checkpoint holds what the steps change: every body's points, every
+//! A checkpoint holds what the steps change: every body's points (and the
+//! energy damping has taken from it), every
 //! block present (pose, velocity, reaction, neighbour list, contacts with
 //! their tangential springs), the body–body and block–block springs, the
 //! settings, gravity and grid edges as the stages left them, where the run
