@@ -365,19 +365,17 @@ fn controlled(scene: &Scene, kept: bool) -> Simulation {
     sim
 }
 
-/// A controlled run stepped to step 120 and written to `file`, and a fresh
-/// one restored from it.
+/// `first` (a run with user state) stepped to step 120 and written to
+/// `file` of `scene`, and `restored`, a fresh one, restored from it.
 fn written_and_restored(
+    (mut first, mut restored): (Simulation, Simulation),
     scene: &Scene,
-    kept: bool,
     file: &std::path::Path,
 ) -> (Simulation, Simulation) {
-    let mut first = controlled(scene, kept);
     step_to(&mut first, 120);
     first
         .write_checkpoint(file)
         .unwrap_or_else(|e| panic!("{e}"));
-    let mut restored = controlled(scene, kept);
     restored
         .restore_checkpoint(scene, file)
         .unwrap_or_else(|e| panic!("{e}"));
@@ -392,7 +390,11 @@ fn a_user_resource_registered_for_checkpoints_resumes_bit_identically() {
     straight.run().unwrap_or_else(|e| panic!("{e}"));
 
     let file = checkpoint_file("controller");
-    let (first, mut resumed) = written_and_restored(&scene, true, &file);
+    let (first, mut resumed) = written_and_restored(
+        (controlled(&scene, true), controlled(&scene, true)),
+        &scene,
+        &file,
+    );
     assert_eq!(
         resumed.world().resource::<Controller>(),
         first.world().resource::<Controller>()
@@ -407,7 +409,11 @@ fn a_user_resource_registered_for_checkpoints_resumes_bit_identically() {
     // Without the controller's state the resumed run differs: the test can
     // tell the two apart.
     let unkept = checkpoint_file("controller-unkept");
-    let (_, mut fresh) = written_and_restored(&scene, false, &unkept);
+    let (_, mut fresh) = written_and_restored(
+        (controlled(&scene, false), controlled(&scene, false)),
+        &scene,
+        &unkept,
+    );
     fresh.run().unwrap_or_else(|e| panic!("{e}"));
     assert_ne!(fresh.state_hash(), straight.state_hash());
 
@@ -507,18 +513,14 @@ fn a_user_component_registered_for_checkpoints_resumes_bit_identically() {
     let mut straight = tethered(&scene, true, true);
     straight.run().unwrap_or_else(|e| panic!("{e}"));
 
-    let file = checkpoint_file("tether");
-    let mut first = tethered(&scene, true, true);
-    step_to(&mut first, 120);
-    first
-        .write_checkpoint(&file)
-        .unwrap_or_else(|e| panic!("{e}"));
     // The field is not put on the bar before restoring: the checkpoint
     // puts it there.
-    let mut resumed = tethered(&scene, false, true);
-    resumed
-        .restore_checkpoint(&scene, &file)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let file = checkpoint_file("tether");
+    let (mut first, mut resumed) = written_and_restored(
+        (tethered(&scene, true, true), tethered(&scene, false, true)),
+        &scene,
+        &file,
+    );
     assert_eq!(the_tether(&mut resumed), the_tether(&mut first));
     resumed.run().unwrap_or_else(|e| panic!("{e}"));
     assert_same_run(&mut resumed, &mut straight);
@@ -527,30 +529,22 @@ fn a_user_component_registered_for_checkpoints_resumes_bit_identically() {
     // Without it, a resumed run that starts the field afresh differs: the
     // test can tell the two apart.
     let unkept = checkpoint_file("tether-unkept");
-    let mut first = tethered(&scene, true, false);
-    step_to(&mut first, 120);
-    first
-        .write_checkpoint(&unkept)
-        .unwrap_or_else(|e| panic!("{e}"));
-    let mut fresh = tethered(&scene, true, false);
-    fresh
-        .restore_checkpoint(&scene, &unkept)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let (_, mut fresh) = written_and_restored(
+        (tethered(&scene, true, false), tethered(&scene, true, false)),
+        &scene,
+        &unkept,
+    );
     fresh.run().unwrap_or_else(|e| panic!("{e}"));
     assert_ne!(fresh.state_hash(), straight.state_hash());
 
     // A checkpoint whose bar had no field removes one put on before
     // restoring: the resumed run is the one that was written.
     let bare = checkpoint_file("tether-bare");
-    let mut first = tethered(&scene, false, true);
-    step_to(&mut first, 120);
-    first
-        .write_checkpoint(&bare)
-        .unwrap_or_else(|e| panic!("{e}"));
-    let mut restored = tethered(&scene, true, true);
-    restored
-        .restore_checkpoint(&scene, &bare)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let (_, mut restored) = written_and_restored(
+        (tethered(&scene, false, true), tethered(&scene, true, true)),
+        &scene,
+        &bare,
+    );
     assert_eq!(the_tether(&mut restored), None);
 
     // A name stored as a component but kept as a resource is refused.
