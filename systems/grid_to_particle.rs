@@ -30,8 +30,8 @@ use rayon::prelude::*;
 /// still move it) is put back on the wall, and its velocity's component
 /// into the wall removed.
 ///
-/// Reads: `Grid`, `Settings`, `Clock`, `GridLayer`, `TransferScratch::stencils`
-/// and `order`, `MaterialPoints::mass`.
+/// Reads: `Grid`, `Settings`, `Clock`, `GridLayer`, `TransferScratch::stencils`,
+/// `order` and `undamped`, `MaterialPoints::mass`.
 /// Writes: `MaterialPoints` (position, velocity), `TransferScratch::xpic`
 /// and `damped`, `DampedEnergy` (what the update took from the points),
 /// `StepTravel` (the largest |x^{n+1} − x^n|, a maximum, so exact for any
@@ -54,12 +54,14 @@ pub fn grid_to_particle(
     let order = settings.xpic_order.unwrap_or(0);
     // Undamped pure FLIP gives the FLIP update itself, bit for bit: nothing
     // is taken, and nothing needs counting.
-    let takes = beta != 0.0 || alpha != 0.0 || order >= 1;
+    let grid_damped = settings.grid_damping != 0.0;
+    let takes = beta != 0.0 || alpha != 0.0 || order >= 1 || grid_damped;
     for (mut points, mut travel, mut damped, layer, mut scratch) in &mut bodies {
         let TransferScratch {
             stencils,
             order: scatter_order,
             damped: taken,
+            undamped,
             xpic,
             ..
         } = &mut *scratch;
@@ -76,7 +78,7 @@ pub fn grid_to_particle(
             ..
         } = &mut *points;
         let nodes = layer.nodes();
-        let star = &xpic.star;
+        let (star, undamped) = (&xpic.star, &*undamped);
         taken.resize(position.len(), 0.0);
         travel.0 = (
             position.par_iter_mut(),
@@ -95,7 +97,17 @@ pub fn grid_to_particle(
                     });
                 // At α = 0 this is the undamped change, bit for bit.
                 let change = local_damping(grid_new - grid_old, *v, alpha);
-                let flip = *v + (grid_new - grid_old);
+                // What the undamped pure FLIP update would give, for the
+                // energy balance.
+                let flip = if grid_damped {
+                    let free =
+                        stencil.gather(undamped, origin, row_len, DVec2::ZERO, |acc, u, w, _| {
+                            acc + w * *u
+                        });
+                    *v + (free - grid_old)
+                } else {
+                    *v + (grid_new - grid_old)
+                };
                 let step = if order >= 1 {
                     let smoothed =
                         stencil.gather(star, origin, row_len, DVec2::ZERO, |acc, u, w, _| {

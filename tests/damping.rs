@@ -146,8 +146,8 @@ fn damping_and_pic_take_half_of_gravitys_work_from_a_settling_column() {
     // without damping, which never settles, reaches 0.875% of W in its
     // first 0.05 s (`settings: ()`, by hand), hence 1%. The half is taken
     // at rest, where that transient error is gone: 0.5%. Measured: the
-    // worst balance 0.71% / 0.69% / 0.55%, the half +0.009% / +0.17% /
-    // +0.14%. Without the damped term the balance ends at −50%.
+    // worst balance 0.64% / 0.69% / 0.62%, the half +0.17% / +0.17% /
+    // +0.22%. Without the damped term the balance ends at −50%.
     let grid_damping = Settings {
         grid_damping: 0.2,
         ..Settings::default()

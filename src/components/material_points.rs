@@ -56,15 +56,16 @@ pub struct StepTravel(pub Real);
 
 /// Energy that damping and the velocity update's PIC (or XPIC) part have
 /// taken from the body since the start of the run (J/m), for the energy
-/// balance ([`crate::resources::EnergySample::damped`]):
-/// * at the points, every step, Σ ½ m_p (|V_p + a_p Δt|² − |V_p^{n+1}|²):
-///   what the update took against the undamped FLIP update (particle
-///   damping, the PIC fraction, XPIC's smoothing), before a point the
-///   update carried through a wall is put back on it (the velocity
-///   component then removed is the grid boundary's work, not counted);
-/// * at the nodes, with grid damping, −Σ_i d_i · ½(v_i^n + v_i^{n+1}) Δt,
-///   d_i the damping force; a contact group's shared nodes are counted on
-///   its first member only.
+/// balance ([`crate::resources::EnergySample::damped`]): every step,
+/// Σ ½ m_p (|V_p + a*_p Δt|² − |V_p^{n+1}|²), a*_p Δt = Σ_i S_ip (v*_i − v_i^n)
+/// the point's change under the nodal velocities v*_i found without grid
+/// damping: what the update took against the undamped pure FLIP update
+/// (grid and particle damping, the PIC fraction, XPIC's smoothing), before
+/// a point the update carried through a wall is put back on it (the
+/// velocity component then removed is the grid boundary's work, not
+/// counted). Taken at the points, it counts what reaches the body: grid
+/// damping also slows nodes that carry almost no mass, whose work would
+/// count energy no point ever had.
 #[derive(Component, Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct DampedEnergy(pub Real);
 

@@ -41,6 +41,9 @@ pub struct TransferScratch {
     pub mass_momentum: Scatter<MassMomentumForce>,
     /// Patches of the internal force scatter.
     pub internal_force: Scatter<DVec2>,
+    /// With grid damping, each node's velocity v^{n+1} without it, for the
+    /// energy balance; sized on first use.
+    pub undamped: Vec<DVec2>,
     /// Each point's energy taken by this step's velocity update (see
     /// [`crate::components::DampedEnergy`]), sized on first use.
     pub damped: Vec<Real>,
