@@ -47,7 +47,7 @@ pub struct Simulation {
     warnings: Vec<String>,
     /// The scene's fingerprint, which a checkpoint must match.
     fingerprint: u64,
-    /// User resources that checkpoints carry.
+    /// User state (resources and components) that checkpoints carry.
     kept: KeptState,
 }
 

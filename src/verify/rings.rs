@@ -43,7 +43,8 @@ pub fn energy_drift(sim: &Simulation) -> Real {
 }
 
 /// The largest relative departure of the energy balance (total plus what
-/// the contacts dissipated) from its start (NaN for no samples).
+/// the contacts dissipated and damping took) from its start (NaN for no
+/// samples).
 pub fn widest_balance_swing(samples: &[EnergySample]) -> Real {
     let Some(start) = samples.first().map(EnergySample::balance) else {
         return Real::NAN;
@@ -59,7 +60,7 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
     let (_, v_right) = centre(&mut sim, "right")?;
     let reaches = [reach(&mut sim, "left")?, reach(&mut sim, "right")?];
     let (first, last) = first_and_last(&sim)?;
-    let drift = last.total() / first.total() - 1.0;
+    let drift = energy_drift(&sim);
     let balance_drift = last.balance() / first.balance() - 1.0;
     let widest = widest_balance_swing(energy_samples(&sim));
     let farthest = largest(reaches);
