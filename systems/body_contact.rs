@@ -2,7 +2,7 @@
 
 use crate::components::{BodyIndex, MaterialPoints};
 use crate::contact::{ContactLaw, pair_force};
-use crate::math::{DVec2, Real};
+use crate::math::{DVec2, Real, outer};
 use crate::resources::{
     BodyContacts, BodyPairContact, BodyPairLaw, Clock, Grid, MAX_CONTACT_BODIES, law_between,
 };
@@ -18,9 +18,11 @@ use rayon::prelude::*;
 /// neighbouring cells are tested disk against disk (a disk's radius is at
 /// most half a cell, so overlapping disks are never further apart). Each overlap
 /// gets eq. 18 with the pair's law: the normal from q to p, δ the overlap,
-/// the relative velocity of the two materials at the contact point
-/// (V + L (x_c − x) for each), the tangential spring kept per pair while in
-/// contact. Equal and opposite forces go to the two points' `contact_force`,
+/// the relative velocity at the contact point, the tangential spring kept
+/// per pair while in contact. The relative velocity is, for a pair in
+/// contact last step, its actual relative motion over that step, Δ(x_p −
+/// x_q)/Δt, and for a new pair that of the FLIP velocities, V_p − V_q (see
+/// `compute_rigid_contacts` for why the actual motion). Equal and opposite forces go to the two points' `contact_force`,
 /// pairs in (body, point, body, point) order.
 ///
 /// The cost grows with the points (one cell lookup each) and the candidates
@@ -30,7 +32,7 @@ use rayon::prelude::*;
 /// independent of the thread count.
 ///
 /// Reads: `Grid`, `Clock`, `BodyIndex`, `MaterialPoints` (position,
-/// velocity, velocity gradient, contact radius). Writes: `BodyContacts`,
+/// velocity, contact radius). Writes: `BodyContacts`,
 /// `MaterialPoints::contact_force`.
 pub fn compute_body_contacts(
     grid: Res<Grid>,
@@ -178,7 +180,10 @@ pub fn compute_body_contacts(
             if let Some(entity) = entities[body as usize]
                 && let Ok((_, _, mut points)) = bodies.get_mut(entity)
             {
-                points.contact_force[point as usize] += force;
+                let k = point as usize;
+                points.contact_force[k] += force;
+                let arm = contact.at - points.position[k];
+                points.contact_moment[k] += outer(force, arm);
             }
         }
     }
@@ -203,7 +208,8 @@ fn partners(laws: &[BodyPairLaw], body: u32) -> u64 {
 
 /// Eq. 18 between point `p` of body `a` and point `q` of body `b` (a < b)
 /// if their disks overlap: the normal from q to p, δ the overlap, the
-/// materials' velocities at the middle of the overlap, the pair's
+/// relative velocity at the middle of the overlap (the pair's actual motion
+/// over the last step, or for a new pair the FLIP velocities), the pair's
 /// tangential spring from `previous` (sorted by key).
 fn disk_pair(
     law: &ContactLaw,
@@ -225,15 +231,21 @@ fn disk_pair(
     }
     let normal = gap / distance;
     let at = xq + normal * (rq - 0.5 * overlap);
-    let material = |points: &MaterialPoints, k: u32| {
+    let rotation = |points: &MaterialPoints, k: u32| {
         let k = k as usize;
-        points.velocity[k] + points.velocity_gradient[k] * (at - points.position[k])
+        points.velocity_gradient[k] * (at - points.position[k])
     };
-    let relative = material(first, p) - material(second, q);
     let key = (a, p, b, q);
-    let carried = previous
+    let before = previous
         .binary_search_by(|c| c.key().cmp(&key))
-        .map_or(DVec2::ZERO, |k| previous[k].tangential);
+        .ok()
+        .map(|k| &previous[k]);
+    let relative = rotation(first, p) - rotation(second, q)
+        + match before {
+            Some(c) => (gap - c.separation) / dt,
+            None => first.velocity[p as usize] - second.velocity[q as usize],
+        };
+    let carried = before.map_or(DVec2::ZERO, |c| c.tangential);
     let f = pair_force(law, overlap, normal, relative, carried, dt);
     Some(BodyPairContact {
         a,

@@ -6,7 +6,7 @@ use crate::components::{
     PointContact, Pose, Reaction, RigidMass, RigidShape, RigidVelocity, sort_into_scene_order,
 };
 use crate::contact::{disk_shape_contact, overlap_area, overlap_area_integral, pair_force};
-use crate::math::{DVec2, Real};
+use crate::math::{DMat2, DVec2, Real, outer};
 use crate::resources::{Clock, ContactSettings, Penetration};
 use crate::rigid::velocity_at;
 use bevy_ecs::prelude::*;
@@ -33,17 +33,26 @@ type BlockData = (
 /// For every block (in scene order) and every listed point (in list order):
 /// the point's disk against the block's shape (parry's contact query gives
 /// the depth and the normal from block to point; δ is that depth or the
-/// disk's overlap area, per `ContactSettings::penetration`), then eq. 18 with the
-/// relative velocity (V_p + L_p (x_c − x_p)) − (v + ω × r) at the contact
-/// point x_c (the material's velocity there, so a rolling body does not drag
-/// its own friction spring) and the pair's
-/// tangential spring from the previous step (dropped on separation). The
+/// disk's overlap area, per `ContactSettings::penetration`), then eq. 18 with
+/// the pair's tangential spring from the previous step (dropped on
+/// separation) and the relative velocity at the contact point x_c:
+/// * for a pair in contact last step, its actual relative motion over that
+///   step, (Δx_p − Δx_surface)/Δt, Δx_surface the motion of the block's
+///   surface point it touched;
+/// * for a new contact, the point's velocity less the block's there,
+///   V_p − (v + ω × r).
+///
+/// The tangential spring is thus stretched by the motion its force does
+/// work on: the force acts on the point's centre, which moves with the
+/// grid's velocity, not with its FLIP velocity V_p (nor with the material's
+/// rotation about it). A spring stretched by anything else does work it
+/// does not store, and fed energy into a body at rest on a block. The
 /// force goes to the point's `contact_force`, the opposite force and its
 /// torque about the centre of mass to the block's `Reaction`, both summed in
 /// that fixed order.
 ///
 /// Reads: `Clock`, `ContactSettings`, blocks (shape, pose, velocity, mass, law, neighbour list),
-/// `MaterialPoints` (position, velocity, velocity gradient, contact radius).
+/// `MaterialPoints` (position, velocity, contact radius).
 /// Writes: `MaterialPoints::contact_force`, `BlockContacts`, `Reaction`.
 pub fn compute_rigid_contacts(
     clock: Res<Clock>,
@@ -56,10 +65,9 @@ pub fn compute_rigid_contacts(
     // The first contact system of the step: it resets every point's
     // contact force (also when there is no block, for the body contacts).
     for mut points in &mut bodies {
-        points
-            .contact_force
-            .iter_mut()
-            .for_each(|f| *f = DVec2::ZERO);
+        let points = &mut *points;
+        points.contact_force.fill(DVec2::ZERO);
+        points.contact_moment.fill(DMat2::ZERO);
     }
     if blocks.is_empty() {
         return;
@@ -89,13 +97,22 @@ pub fn compute_rigid_contacts(
                 let radius = points.contact_radius[i];
                 let geometry =
                     disk_shape_contact(points.position[i], radius, &*shape.0, &parry_pose)?;
-                let material_velocity = points.velocity[i]
-                    + points.velocity_gradient[i] * (geometry.point - points.position[i]);
-                let relative =
-                    material_velocity - velocity_at(pose, velocity, mass, geometry.point);
-                let carried = previous
+                let before = previous
                     .binary_search_by(|c| (c.body, c.point).cmp(&(body, p)))
-                    .map_or(DVec2::ZERO, |k| previous[k].tangential);
+                    .ok()
+                    .map(|k| &previous[k]);
+                let rotation = points.velocity_gradient[i] * (geometry.point - points.position[i]);
+                let relative = rotation
+                    + match before {
+                        Some(c) => {
+                            let surface_moved = pose.to_world(c.at_on_block) - c.at;
+                            (points.position[i] - c.from - surface_moved) / clock.dt
+                        }
+                        None => {
+                            points.velocity[i] - velocity_at(pose, velocity, mass, geometry.point)
+                        }
+                    };
+                let carried = before.map_or(DVec2::ZERO, |c| c.tangential);
                 let law = &law.0;
                 let (delta, normal_potential) = match settings.penetration {
                     Penetration::Depth => (geometry.depth, 0.5 * geometry.depth.powi(2)),
@@ -125,7 +142,9 @@ pub fn compute_rigid_contacts(
         let compound = shape.0.as_compound();
         for contact in found.iter().flatten() {
             if let Ok(mut points) = bodies.get_mut(contact.body) {
-                points.contact_force[contact.point as usize] += contact.force;
+                let k = contact.point as usize;
+                points.contact_force[k] += contact.force;
+                points.contact_moment[k] += outer(contact.force, contact.at - contact.from);
             }
             reaction.force -= contact.force;
             reaction.torque -= (contact.at - center).perp_dot(contact.force);

@@ -2,12 +2,12 @@
 //! or XPIC, eqs. 12a/12b).
 
 use crate::components::{
-    DampedEnergy, GridLayer, MaterialPoints, StepTravel, TransferScratch, XpicScratch,
+    DampedEnergy, GridLayer, MaterialPoints, RemapScratch, StepTravel, TransferScratch,
 };
-use crate::math::{DVec2, Real, local_damping};
+use crate::math::{DMat2, DVec2, Real, local_damping, outer};
 use crate::resources::{Clock, Grid, PositionUpdate, Settings};
 use crate::shape_functions::Stencil;
-use crate::transfer::{MIN_POINTS_PER_TASK, ScatterOrder};
+use crate::transfer::{MIN_POINTS_PER_TASK, Scatter, ScatterOrder};
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
@@ -16,7 +16,10 @@ use rayon::prelude::*;
 /// damping α_p |a_p| sign(V^n) per component:
 /// * eq. 11a: V^{n+1} = (1 − β)(V^n + a_p Δt) + β (v^n + a_p Δt);
 /// * eq. 11b: x^{n+1} = x^n + ½(v^n + v^{n+1}) Δt − ½ β (V^n − v^n) Δt, or
-///   with `PositionUpdate::Forward`, x^{n+1} = x^n + v^{n+1} Δt;
+///   with `PositionUpdate::Forward`, x^{n+1} = x^n + v^{n+1} Δt, or with
+///   `PositionUpdate::Remapped`, x^{n+1} = x^n + Σ S_ip ṽ_i Δt, ṽ_i the
+///   new point velocities mapped back to the nodes (mass-weighted,
+///   constrained);
 ///
 /// or, with an XPIC order m (eq. 12), v* = Σ_{k=1..m} (−1)^{k+1} C(m, k) u_k
 /// on the nodes, u_1 = v_i^n and u_k = S⁺ S u_{k−1} (interpolated to the
@@ -32,7 +35,8 @@ use rayon::prelude::*;
 ///
 /// Reads: `Grid`, `Settings`, `Clock`, `GridLayer`, `TransferScratch::stencils`,
 /// `order` and `undamped`, `MaterialPoints::mass`.
-/// Writes: `MaterialPoints` (position, velocity), `TransferScratch::xpic`
+/// Writes: `MaterialPoints` (position, velocity, velocity gradient of the
+/// motion), `TransferScratch::remap`
 /// and `damped`, `DampedEnergy` (what the update took from the points),
 /// `StepTravel` (the largest |x^{n+1} − x^n|, a maximum, so exact for any
 /// thread count).
@@ -51,7 +55,17 @@ pub fn grid_to_particle(
     let (lo, hi) = grid.wall_bounds();
     let (dt, beta, alpha) = (clock.dt, settings.pic_fraction, settings.particle_damping);
     let forward = settings.position_update == PositionUpdate::Forward;
+    let remapped = settings.position_update == PositionUpdate::Remapped;
     let order = settings.xpic_order.unwrap_or(0);
+    // The nodal velocity that moves the points, as weights of v^n and
+    // v^{n+1} (the remapped one is taken below): its gradient is the
+    // material's motion about each point that the contacts see next step.
+    let (of_old, of_new) = match settings.position_update {
+        _ if order >= 1 => (1.0, 0.0),
+        PositionUpdate::Midpoint => (0.5, 0.5),
+        PositionUpdate::Forward => (0.0, 1.0),
+        PositionUpdate::Remapped => (0.0, 0.0),
+    };
     // Undamped pure FLIP gives the FLIP update itself, bit for bit: nothing
     // is taken, and nothing needs counting.
     let grid_damped = settings.grid_damping != 0.0;
@@ -62,23 +76,24 @@ pub fn grid_to_particle(
             order: scatter_order,
             damped: taken,
             undamped,
-            xpic,
+            remap,
             ..
         } = &mut *scratch;
         if order >= 1 {
             let transfer = (&stencils[..], &*scatter_order);
-            xpic_velocities(order, &points.mass, layer, transfer, xpic);
+            xpic_velocities(order, &points.mass, layer, transfer, remap);
         }
         let window = layer.window();
         let (origin, row_len) = (window.start.map(|k| k as u32), window.width());
         let MaterialPoints {
             position,
             velocity,
+            velocity_gradient,
             mass,
             ..
         } = &mut *points;
         let nodes = layer.nodes();
-        let (star, undamped) = (&xpic.star, &*undamped);
+        let (star, undamped) = (&remap.star, &*undamped);
         taken.resize(position.len(), 0.0);
         travel.0 = (
             position.par_iter_mut(),
@@ -89,12 +104,19 @@ pub fn grid_to_particle(
             .into_par_iter()
             .with_min_len(MIN_POINTS_PER_TASK)
             .zip(taken.par_iter_mut())
-            .map(|((x, v, stencil, m), taken)| {
-                let zero = (DVec2::ZERO, DVec2::ZERO);
-                let (grid_old, grid_new) =
-                    stencil.gather(nodes, origin, row_len, zero, |(old, new), node, w, _| {
-                        (old + w * node.velocity, new + w * node.velocity_new)
+            .zip(velocity_gradient.par_iter_mut())
+            .map(|(((x, v, stencil, m), taken), l)| {
+                let zero = (DVec2::ZERO, DVec2::ZERO, DMat2::ZERO);
+                let (grid_old, grid_new, motion_gradient) =
+                    stencil.gather(nodes, origin, row_len, zero, |(old, new, l), node, w, g| {
+                        let moving = of_old * node.velocity + of_new * node.velocity_new;
+                        (
+                            old + w * node.velocity,
+                            new + w * node.velocity_new,
+                            l + outer(moving, g),
+                        )
                     });
+                *l = motion_gradient;
                 // At α = 0 this is the undamped change, bit for bit.
                 let change = local_damping(grid_new - grid_old, *v, alpha);
                 // What the undamped pure FLIP update would give, for the
@@ -120,6 +142,9 @@ pub fn grid_to_particle(
                 } else {
                     let step = if forward {
                         grid_new * dt
+                    } else if remapped {
+                        // Moved below, once every point has its new velocity.
+                        DVec2::ZERO
                     } else {
                         (0.5 * (grid_old + grid_new) - 0.5 * beta * (*v - grid_old)) * dt
                     };
@@ -135,17 +160,40 @@ pub fn grid_to_particle(
                 if takes {
                     *taken = 0.5 * m * (flip.length_squared() - v.length_squared());
                 }
-                let (before, moved) = (*x, *x + step);
-                *x = moved.clamp(lo, hi);
-                if x.x != moved.x {
-                    v.x = 0.0;
+                if remapped {
+                    return 0.0;
                 }
-                if x.y != moved.y {
-                    v.y = 0.0;
-                }
-                (*x - before).length()
+                move_point(x, v, step, (lo, hi))
             })
             .reduce(|| 0.0, Real::max);
+        if remapped {
+            let transfer = (&stencils[..], &*scatter_order);
+            let RemapScratch {
+                momentum, current, ..
+            } = remap;
+            map_to_nodes(mass, velocity, layer, transfer, momentum, current);
+            let remapped_velocity = &*current;
+            travel.0 = (
+                position.par_iter_mut(),
+                velocity.par_iter_mut(),
+                velocity_gradient.par_iter_mut(),
+                stencils.par_iter(),
+            )
+                .into_par_iter()
+                .with_min_len(MIN_POINTS_PER_TASK)
+                .map(|(x, v, l, stencil)| {
+                    let (u, motion_gradient) = stencil.gather(
+                        remapped_velocity,
+                        origin,
+                        row_len,
+                        (DVec2::ZERO, DMat2::ZERO),
+                        |(u, l), node_u, w, g| (u + w * *node_u, l + outer(*node_u, g)),
+                    );
+                    *l = motion_gradient;
+                    move_point(x, v, u * dt, (lo, hi))
+                })
+                .reduce(|| 0.0, Real::max);
+        }
         if takes {
             // In point order, on one thread: the same sum for any thread count.
             damped.0 += taken.iter().sum::<Real>();
@@ -153,7 +201,59 @@ pub fn grid_to_particle(
     }
 }
 
-/// Fills `xpic.star` with the XPIC(m) nodal velocity v* of eq. 12 on the
+/// Moves a point by `step`, puts it back on a wall it would cross (its
+/// velocity's component into the wall removed) and returns how far it moved.
+#[inline(always)]
+fn move_point(x: &mut DVec2, v: &mut DVec2, step: DVec2, (lo, hi): (DVec2, DVec2)) -> Real {
+    let (before, moved) = (*x, *x + step);
+    *x = moved.clamp(lo, hi);
+    if x.x != moved.x {
+        v.x = 0.0;
+    }
+    if x.y != moved.y {
+        v.y = 0.0;
+    }
+    (*x - before).length()
+}
+
+/// Maps point velocities back to the layer's active nodes:
+/// u_i = Σ_p S_ip m_p V_p / m_i (zero below the layer's mass cutoff),
+/// constrained like the nodal velocities. Nodes outside the active ones
+/// keep earlier values: no stencil reaches them.
+fn map_to_nodes(
+    mass: &[Real],
+    velocity: &[DVec2],
+    layer: &GridLayer,
+    (stencils, scatter_order): (&[Stencil], &ScatterOrder),
+    momentum: &mut Scatter<DVec2>,
+    into: &mut Vec<DVec2>,
+) {
+    let (active, window, nodes) = (layer.active(), layer.window(), layer.nodes());
+    into.resize(nodes.len(), DVec2::ZERO);
+    momentum.scatter(
+        stencils,
+        scatter_order,
+        |p| mass[p] * velocity[p],
+        |mv, w, _| w * *mv,
+    );
+    active
+        .rows_mut(window, into)
+        .for_each(|(_, row)| row.fill(DVec2::ZERO));
+    momentum.add_into(into, window, |u, mv| *u += mv);
+    let cutoff = layer.mass_cutoff;
+    active.rows_mut(window, into).for_each(|(j, row)| {
+        for (u, node) in row.iter_mut().zip(active.row(window, nodes, j)) {
+            *u = if node.mass > cutoff {
+                *u / node.mass
+            } else {
+                DVec2::ZERO
+            };
+        }
+    });
+    layer.constrain(into);
+}
+
+/// Fills `remap.star` with the XPIC(m) nodal velocity v* of eq. 12 on the
 /// layer's active nodes. Nodes outside them keep earlier values: no stencil
 /// reaches them.
 fn xpic_velocities(
@@ -161,9 +261,9 @@ fn xpic_velocities(
     mass: &[Real],
     layer: &GridLayer,
     (stencils, scatter_order): (&[Stencil], &ScatterOrder),
-    xpic: &mut XpicScratch,
+    xpic: &mut RemapScratch,
 ) {
-    let XpicScratch {
+    let RemapScratch {
         point_velocity,
         momentum,
         previous,
@@ -173,7 +273,7 @@ fn xpic_velocities(
     let (active, window, nodes) = (layer.active(), layer.window(), layer.nodes());
     let (origin, row_len) = (window.start.map(|k| k as u32), window.width());
     let m = Real::from(order);
-    for field in [&mut *star, &mut *previous, &mut *current] {
+    for field in [&mut *star, &mut *previous] {
         field.resize(nodes.len(), DVec2::ZERO);
     }
     active
@@ -201,29 +301,14 @@ fn xpic_velocities(
                     acc + w * *u
                 });
             });
-        let carried = &*point_velocity;
-        momentum.scatter(
-            stencils,
-            scatter_order,
-            |p| mass[p] * carried[p],
-            |mv, w, _| w * *mv,
+        map_to_nodes(
+            mass,
+            point_velocity,
+            layer,
+            (stencils, scatter_order),
+            momentum,
+            current,
         );
-        active
-            .rows_mut(window, current)
-            .for_each(|(_, row)| row.fill(DVec2::ZERO));
-        momentum.add_into(current, window, |u, mv| *u += mv);
-        let cutoff = layer.mass_cutoff;
-        active.rows_mut(window, current).for_each(|(j, current)| {
-            let row = active.row(window, nodes, j);
-            for (u, node) in current.iter_mut().zip(row) {
-                *u = if node.mass > cutoff {
-                    *u / node.mass
-                } else {
-                    DVec2::ZERO
-                };
-            }
-        });
-        layer.constrain(current);
         active
             .rows_mut(window, star)
             .zip(active.rows_mut(window, current))

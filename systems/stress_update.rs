@@ -70,7 +70,6 @@ impl StrainStep<'_> {
     ) {
         let MaterialPoints {
             deformation_gradient,
-            velocity_gradient,
             stress,
             strain,
             volume,
@@ -79,7 +78,6 @@ impl StrainStep<'_> {
         } = points;
         (
             deformation_gradient.par_iter_mut(),
-            velocity_gradient.par_iter_mut(),
             stress.par_iter_mut(),
             strain.par_iter_mut(),
             volume.par_iter_mut(),
@@ -88,9 +86,8 @@ impl StrainStep<'_> {
         )
             .into_par_iter()
             .with_min_len(MIN_POINTS_PER_TASK)
-            .for_each(|(f, l_p, sigma, eps, v, v0, stencil)| {
+            .for_each(|(f, sigma, eps, v, v0, stencil)| {
                 let l = self.velocity_gradient(stencil);
-                *l_p = l;
                 *f = (DMat2::IDENTITY + l * self.dt) * *f;
                 *v = f.determinant() * v0;
                 let d = rate_of_deformation(l);

@@ -18,4 +18,4 @@ pub use rigid::{
     BlockContactLaw, BlockContacts, BlockId, BlockOutline, NeighbourList, PartReactions,
     PointContact, Pose, Reaction, RigidMass, RigidMotion, RigidShape, RigidVelocity,
 };
-pub use transfer_scratch::{MassMomentumForce, TransferScratch, XpicScratch};
+pub use transfer_scratch::{MassMomentumForce, RemapScratch, TransferScratch};

@@ -47,20 +47,24 @@ pub struct TransferScratch {
     /// Each point's energy taken by this step's velocity update (see
     /// [`crate::components::DampedEnergy`]), sized on first use.
     pub damped: Vec<Real>,
-    /// Work space of XPIC (eq. 12), sized on first use.
-    pub xpic: XpicScratch,
+    /// Work space of G2P's maps from the points back to the nodes, sized
+    /// on first use.
+    pub remap: RemapScratch,
 }
 
-/// Work space of the XPIC(m) iteration of one body.
+/// Work space of one body's maps from the points back to its nodes in G2P:
+/// the XPIC(m) iteration (eq. 12) and the remapped velocity of
+/// [`crate::resources::PositionUpdate::Remapped`].
 #[derive(Clone, Debug, Default)]
-pub struct XpicScratch {
+pub struct RemapScratch {
     /// Velocities interpolated to the points, S u_{k−1}.
     pub point_velocity: Vec<DVec2>,
-    /// Patches of the momentum scatter S m_p (S u_{k−1})_p.
+    /// Patches of the momentum scatter S m_p V_p.
     pub momentum: Scatter<DVec2>,
-    /// Nodal velocities of the previous iterate u_{k−1}.
+    /// Nodal velocities of the previous XPIC iterate u_{k−1}.
     pub previous: Vec<DVec2>,
-    /// Nodal velocities of the current iterate u_k.
+    /// Nodal velocities mapped back from the points: the current XPIC
+    /// iterate u_k, or the remapped velocity.
     pub current: Vec<DVec2>,
     /// The XPIC nodal velocity v* = Σ_k (−1)^{k+1} C(m, k) u_k.
     pub star: Vec<DVec2>,

@@ -92,9 +92,10 @@ pub struct EnergySample {
     /// Energy the point contacts' tangential forces have taken from the
     /// bodies since the start and their springs do not hold (J/m): −W_t −
     /// Σ |f_t|²/(2 k_t), W_t their work on the actual relative motion
-    /// ([`crate::resources::ContactWork`]). Coulomb sliding, and the springs'
-    /// stretching by the material velocity where it differs from the actual
-    /// motion. The normal dashpot's work (`normal_damping`) is not in it.
+    /// ([`crate::resources::ContactWork`]): Coulomb sliding, and a new
+    /// contact's first stretch (by the FLIP velocity, before the pair has an
+    /// actual motion). The normal dashpot's work (`normal_damping`) is not
+    /// in it.
     pub dissipated: Real,
     /// Energy grid and particle damping and the PIC (or XPIC) part of the
     /// velocity update have taken from the bodies since the start (J/m;

@@ -7,7 +7,7 @@ use super::{
 use crate::components::RigidVelocity;
 use crate::contact::ForceApplication;
 use crate::math::Real;
-use crate::resources::MAX_CONTACT_BODIES;
+use crate::resources::{MAX_CONTACT_BODIES, PositionUpdate};
 use std::collections::BTreeSet;
 use std::path::Path;
 
@@ -86,6 +86,14 @@ impl Scene {
             return Err(invalid(
                 &["settings", "xpic_order"],
                 "settings.xpic_order: XPIC is not available with contact groups yet (its projections run per body); use pic_fraction".into(),
+            ));
+        }
+        if self.settings.position_update == PositionUpdate::Remapped
+            && !self.shared_layers().is_empty()
+        {
+            return Err(invalid(
+                &["settings", "position_update"],
+                "settings.position_update: Remapped is not available with contact groups yet (its map runs per body); use Forward".into(),
             ));
         }
 

@@ -147,5 +147,58 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
             ));
         }
     }
+    checks.extend(stiffer_block(ctx)?);
     Ok(checks)
+}
+
+/// Young's modulus of the stiffer block (Pa), ten times the scenes', and
+/// the step its faster waves need (s): CFL 0.58 with c = √(E/ρ) = 577 m/s.
+const STIFFER: (Real, Real) = (1e9, 1e-5);
+
+/// The 18° block at the scenes' E and ten times stiffer: the rigid
+/// reference leaves out the block's elasticity, so the stiffer block must
+/// come closer to it (judged at each time).
+pub fn stiffer_block(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
+    let slope = 18;
+    let (w, h) = BLOCK;
+    let rounded = rocking_block(w, h, DISK_RADIUS, slope as Real, &TIMES);
+    let mut errors = Vec::new();
+    for stiffer in [false, true] {
+        let mut scene = ctx.scene(&format!("toppling_{slope}.ron"))?;
+        scene.time.end = TIMES[TIMES.len() - 1];
+        let name = if stiffer {
+            let (youngs_modulus, dt) = STIFFER;
+            for material in &mut scene.materials {
+                if let crate::materials::MaterialModel::LinearElastic(m) = &mut material.model {
+                    m.youngs_modulus = youngs_modulus;
+                }
+            }
+            scene.time.dt = dt;
+            format!("toppling_{slope}_stiffer")
+        } else {
+            format!("toppling_{slope}")
+        };
+        let sim = ctx.run(&name, &scene)?;
+        let psi = simulated_rotation(&sim, &TIMES)?;
+        errors.push(
+            psi.iter()
+                .zip(&rounded)
+                .map(|(p, r)| p / r - 1.0)
+                .collect::<Vec<_>>(),
+        );
+    }
+    Ok((0..TIMES.len())
+        .map(|k| {
+            let (scenes, stiffer) = (errors[0][k], errors[1][k]);
+            Check::judged(
+                format!(
+                    "{slope}°, E ten times the scenes' ({:.0e} Pa): ψ({} s) against the rounded rigid block",
+                    STIFFER.0, TIMES[k]
+                ),
+                format!("{} (scenes' E: {})", percent(stiffer, 1), percent(scenes, 1)),
+                "closer than at the scenes' E".to_string(),
+                stiffer.abs() < scenes.abs(),
+            )
+        })
+        .collect())
 }
