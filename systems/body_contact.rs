@@ -2,7 +2,7 @@
 
 use crate::components::{BodyIndex, MaterialPoints};
 use crate::contact::{ContactLaw, pair_force};
-use crate::math::{DVec2, Real, outer};
+use crate::math::{DVec2, Real};
 use crate::resources::{
     BodyContacts, BodyPairContact, BodyPairLaw, Clock, Grid, MAX_CONTACT_BODIES, law_between,
 };
@@ -180,10 +180,7 @@ pub fn compute_body_contacts(
             if let Some(entity) = entities[body as usize]
                 && let Ok((_, _, mut points)) = bodies.get_mut(entity)
             {
-                let k = point as usize;
-                points.contact_force[k] += force;
-                let arm = contact.at - points.position[k];
-                points.contact_moment[k] += outer(force, arm);
+                points.contact_force[point as usize] += force;
             }
         }
     }

@@ -6,7 +6,7 @@ use crate::components::{
     PointContact, Pose, Reaction, RigidMass, RigidShape, RigidVelocity, sort_into_scene_order,
 };
 use crate::contact::{disk_shape_contact, overlap_area, overlap_area_integral, pair_force};
-use crate::math::{DMat2, DVec2, Real, outer};
+use crate::math::{DVec2, Real};
 use crate::resources::{Clock, ContactSettings, Penetration};
 use crate::rigid::velocity_at;
 use bevy_ecs::prelude::*;
@@ -65,9 +65,7 @@ pub fn compute_rigid_contacts(
     // The first contact system of the step: it resets every point's
     // contact force (also when there is no block, for the body contacts).
     for mut points in &mut bodies {
-        let points = &mut *points;
         points.contact_force.fill(DVec2::ZERO);
-        points.contact_moment.fill(DMat2::ZERO);
     }
     if blocks.is_empty() {
         return;
@@ -142,9 +140,7 @@ pub fn compute_rigid_contacts(
         let compound = shape.0.as_compound();
         for contact in found.iter().flatten() {
             if let Ok(mut points) = bodies.get_mut(contact.body) {
-                let k = contact.point as usize;
-                points.contact_force[k] += contact.force;
-                points.contact_moment[k] += outer(contact.force, contact.at - contact.from);
+                points.contact_force[contact.point as usize] += contact.force;
             }
             reaction.force -= contact.force;
             reaction.torque -= (contact.at - center).perp_dot(contact.force);

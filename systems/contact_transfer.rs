@@ -4,36 +4,52 @@ use crate::components::{
     BlockContacts, BlockId, BodyIndex, GridLayer, MaterialPoints, sort_into_scene_order,
 };
 use crate::contact::{ForceApplication, traction_points};
-use crate::math::{DVec2, Real};
-use crate::resources::{BodyContacts, ContactSettings, Grid};
+use crate::math::{DVec2, Real, outer};
+use crate::resources::{BodyContacts, ContactSettings, Grid, Settings};
+use crate::shape_functions::{ShapeFunction, StencilGrid};
 use bevy_ecs::prelude::*;
 
 /// In `Traction` mode, splits every contact force over the integration
 /// points of the contact edge of the point's domain and adds each share to
 /// the body's layer with the hat functions N_i (eq. 7b's traction term).
-/// Contacts are visited in block order, then in each block's contact order,
-/// then the body–body contacts in key order (each pair's two forces), so
-/// the nodal sums are formed in a fixed order. In `BodyForce` mode the
-/// particle-to-grid transfer maps `MaterialPoints::contact_force` with S_ip
-/// instead, and this system does nothing.
+/// In `BodyForce` mode the particle-to-grid transfer maps
+/// `MaterialPoints::contact_force` with S_ip, and this system adds the
+/// rest of S_i(x_c) f to first order, the force's first moment about the
+/// point: (f ⊗ (x_c − x_p)) G_ip for a force f at the contact point x_c.
+/// The force then acts where it touches: its moment about the point
+/// reaches the body, and the material's rotation about the point, which
+/// stretches the contact's tangential spring, is a motion the force does
+/// work on. Contacts are visited in block order, then in each block's
+/// contact order, then the body–body contacts in key order (each pair's
+/// two forces), so the nodal sums are formed in a fixed order.
 ///
-/// Reads: `Grid`, `ContactSettings`, `BlockContacts`, `BodyContacts`, `MaterialPoints` (position, half-size).
+/// Reads: `Grid`, `ContactSettings`, `Settings::shape_function`,
+/// `BlockContacts`, `BodyContacts`, `MaterialPoints` (position, half-size).
 /// Writes: `GridLayer::nodes` (external force).
 pub fn transfer_contact_forces(
-    grid: Res<Grid>,
-    settings: Res<ContactSettings>,
+    (grid, settings, numerics): (Res<Grid>, Res<ContactSettings>, Res<Settings>),
     mut order: Local<Vec<(u32, Entity)>>,
     blocks: Query<(Entity, &BlockId, &BlockContacts)>,
     body_contacts: Res<BodyContacts>,
     mut body_order: Local<Vec<(BodyIndex, Entity)>>,
     mut bodies: Query<(Entity, &BodyIndex, &MaterialPoints, &mut GridLayer)>,
 ) {
-    let ForceApplication::Traction { points: count } = settings.force_application else {
-        return;
+    let transfer = match settings.force_application {
+        // Scenes are validated to at least 1; a system changing the setting
+        // at run time must not make the split divide by zero.
+        ForceApplication::Traction { points } => Transfer::Traction(points.max(1)),
+        ForceApplication::BodyForce => {
+            Transfer::Moment(numerics.shape_function, grid.stencil_grid())
+        }
     };
-    // Scenes are validated to at least 1; a system changing the setting at
-    // run time must not make the split divide by zero.
-    let count = count.max(1);
+    let add = |points: &MaterialPoints, layer: &mut GridLayer, p: u32, force: DVec2, at: DVec2| {
+        match &transfer {
+            Transfer::Traction(count) => add_traction(&grid, points, layer, p, force, *count),
+            Transfer::Moment(kernel, stencil_grid) => {
+                add_moment(*kernel, stencil_grid, points, layer, p, force, at)
+            }
+        }
+    };
     sort_into_scene_order(&mut order, blocks.iter().map(|(e, id, _)| (id.index, e)));
     for (_, entity) in order.iter() {
         let Ok((_, _, contacts)) = blocks.get(*entity) else {
@@ -41,14 +57,7 @@ pub fn transfer_contact_forces(
         };
         for contact in &contacts.current {
             if let Ok((_, _, points, mut layer)) = bodies.get_mut(contact.body) {
-                add_traction(
-                    &grid,
-                    points,
-                    &mut layer,
-                    contact.point,
-                    contact.force,
-                    count,
-                );
+                add(points, &mut layer, contact.point, contact.force, contact.at);
             }
         }
     }
@@ -62,10 +71,43 @@ pub fn transfer_contact_forces(
             (contact.b, contact.q, -contact.force),
         ] {
             if let Ok((_, _, points, mut layer)) = bodies.get_mut(body_order[body as usize].1) {
-                add_traction(&grid, points, &mut layer, point, force, count);
+                add(points, &mut layer, point, force, contact.at);
             }
         }
     }
+}
+
+/// How the contact forces reach the grid in this system.
+enum Transfer {
+    /// Over this many points of the contact edge of the point's domain.
+    Traction(u32),
+    /// The first moment about the point, with the body's stencils.
+    Moment(ShapeFunction, StencilGrid),
+}
+
+/// Adds the first moment of `force` at `at` about point `p`,
+/// (f ⊗ (x_c − x_p)) G_ip, to the nodes of the point's stencil (none for a
+/// point that has left the grid, which particle-to-grid reports).
+fn add_moment(
+    kernel: ShapeFunction,
+    stencil_grid: &StencilGrid,
+    points: &MaterialPoints,
+    layer: &mut GridLayer,
+    p: u32,
+    force: DVec2,
+    at: DVec2,
+) {
+    let p = p as usize;
+    let (position, half_size) = (points.position[p], points.half_size[p]);
+    let Some(stencil) = kernel.stencil(position, half_size, stencil_grid) else {
+        return;
+    };
+    let moment = outer(force, at - position);
+    let window = layer.window();
+    let (origin, row_len) = (window.start.map(|k| k as u32), window.width());
+    stencil.scatter(layer.nodes_mut(), origin, row_len, |node, _, g| {
+        node.external_force += moment * g;
+    });
 }
 
 /// Splits `force` on point `p` over `count` points of the contact edge of

@@ -3,15 +3,20 @@
 use crate::components::{
     BlockContacts, BlockId, BodyIndex, MaterialPoints, Pose, sort_into_scene_order,
 };
-use crate::resources::{BodyContacts, ContactWork};
+use crate::math::Real;
+use crate::resources::{BodyContacts, Clock, ContactWork};
 use bevy_ecs::prelude::*;
 
 /// Adds this step's work of the contacts' tangential forces on the relative
 /// motion of what they join to `ContactWork`: for a point–block contact,
-/// the tangential force on the point times the point's displacement over
-/// the step less that of the block's surface point it touched; for a
-/// point–point contact, the tangential force on p times the change of
-/// x_p − x_q. Run after the points and the blocks have moved. Blocks in scene order, contacts in their stored order, body
+/// the tangential force on the point times the motion of the material at
+/// the contact point over the step (the point's displacement plus
+/// L_p (x_c − x_p) Δt, L_p the gradient of the velocity that moved it, the
+/// force acting at x_c) less that of the block's surface point it touched;
+/// for a point–point contact, the tangential force on p times the change
+/// of x_p − x_q plus (L_p a_p − L_q a_q) Δt, a the arms from the points'
+/// centres to the contact point when it was found. Run after the points
+/// and the blocks have moved. Blocks in scene order, contacts in their stored order, body
 /// contacts after them: one fixed order of summation.
 ///
 /// Only the tangential part is taken: the normal spring k_n δ is a potential
@@ -19,9 +24,11 @@ use bevy_ecs::prelude::*;
 /// force over a step would differ from its change only by the time
 /// integration's error, which belongs to the balance, not to dissipation.
 ///
-/// Reads: `BlockId`, `BlockContacts`, `Pose`,
-/// `BodyContacts`, `BodyIndex`, `MaterialPoints::position`. Writes: `ContactWork`.
+/// Reads: `Clock`, `BlockId`, `BlockContacts`, `Pose`, `BodyContacts`,
+/// `BodyIndex`, `MaterialPoints` (position, velocity gradient, contact
+/// radius). Writes: `ContactWork`.
 pub fn account_contact_work(
+    clock: Res<Clock>,
     mut work: ResMut<ContactWork>,
     body_contacts: Res<BodyContacts>,
     mut order: Local<Vec<(u32, Entity)>>,
@@ -39,7 +46,9 @@ pub fn account_contact_work(
             let Ok((_, _, points)) = bodies.get(c.body) else {
                 continue;
             };
-            let moved = points.position[c.point as usize] - c.from;
+            let k = c.point as usize;
+            let turned = points.velocity_gradient[k] * (c.at - c.from) * clock.dt;
+            let moved = points.position[k] - c.from + turned;
             let surface_moved = pose.to_world(c.at_on_block) - c.at;
             done += c.tangential.dot(moved - surface_moved);
         }
@@ -53,15 +62,25 @@ pub fn account_contact_work(
             }
             slots[k] = Some(entity);
         }
-        let position = |body: u32, point: u32| {
+        let points_of = |body: u32| {
             let entity = slots.get(body as usize).copied().flatten()?;
-            let (_, _, points) = bodies.get(entity).ok()?;
-            Some(points.position[point as usize])
+            bodies.get(entity).ok().map(|(_, _, points)| points)
         };
         for c in &body_contacts.current {
-            if let (Some(xp), Some(xq)) = (position(c.a, c.p), position(c.b, c.q)) {
-                done += c.tangential.dot(xp - xq - c.separation);
-            }
+            let (Some(first), Some(second)) = (points_of(c.a), points_of(c.b)) else {
+                continue;
+            };
+            let (p, q) = (c.p as usize, c.q as usize);
+            // The arms from the centres to the contact point, along the
+            // normal from q to p, when the contact was found.
+            let normal = c.separation.normalize_or_zero();
+            let reach = |radius: Real| radius - 0.5 * c.overlap;
+            let arm_p = -normal * reach(first.contact_radius[p]);
+            let arm_q = normal * reach(second.contact_radius[q]);
+            let turned = (first.velocity_gradient[p] * arm_p - second.velocity_gradient[q] * arm_q)
+                * clock.dt;
+            let moved = first.position[p] - second.position[q] - c.separation;
+            done += c.tangential.dot(moved + turned);
         }
     }
     work.tangential_work = done;

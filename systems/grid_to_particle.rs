@@ -59,7 +59,8 @@ pub fn grid_to_particle(
     let order = settings.xpic_order.unwrap_or(0);
     // The nodal velocity that moves the points, as weights of v^n and
     // v^{n+1} (the remapped one is taken below): its gradient is the
-    // material's motion about each point that the contacts see next step.
+    // material's motion about each point in contact, which its contacts'
+    // springs take next step and whose work the balance counts.
     let (of_old, of_new) = match settings.position_update {
         _ if order >= 1 => (1.0, 0.0),
         PositionUpdate::Midpoint => (0.5, 0.5),
@@ -90,8 +91,10 @@ pub fn grid_to_particle(
             velocity,
             velocity_gradient,
             mass,
+            contact_force,
             ..
         } = &mut *points;
+        let touched = &*contact_force;
         let nodes = layer.nodes();
         let (star, undamped) = (&remap.star, &*undamped);
         taken.resize(position.len(), 0.0);
@@ -104,19 +107,21 @@ pub fn grid_to_particle(
             .into_par_iter()
             .with_min_len(MIN_POINTS_PER_TASK)
             .zip(taken.par_iter_mut())
-            .zip(velocity_gradient.par_iter_mut())
-            .map(|(((x, v, stencil, m), taken), l)| {
-                let zero = (DVec2::ZERO, DVec2::ZERO, DMat2::ZERO);
-                let (grid_old, grid_new, motion_gradient) =
-                    stencil.gather(nodes, origin, row_len, zero, |(old, new, l), node, w, g| {
-                        let moving = of_old * node.velocity + of_new * node.velocity_new;
-                        (
-                            old + w * node.velocity,
-                            new + w * node.velocity_new,
-                            l + outer(moving, g),
-                        )
+            .zip((velocity_gradient.par_iter_mut(), touched.par_iter()))
+            .map(|(((x, v, stencil, m), taken), (l, contact))| {
+                let zero = (DVec2::ZERO, DVec2::ZERO);
+                let (grid_old, grid_new) =
+                    stencil.gather(nodes, origin, row_len, zero, |(old, new), node, w, _| {
+                        (old + w * node.velocity, new + w * node.velocity_new)
                     });
-                *l = motion_gradient;
+                // Remapped positions: taken below.
+                *l = if *contact == DVec2::ZERO || remapped {
+                    DMat2::ZERO
+                } else {
+                    stencil.gather(nodes, origin, row_len, DMat2::ZERO, |l, node, _, g| {
+                        l + outer(of_old * node.velocity + of_new * node.velocity_new, g)
+                    })
+                };
                 // At α = 0 this is the undamped change, bit for bit.
                 let change = local_damping(grid_new - grid_old, *v, alpha);
                 // What the undamped pure FLIP update would give, for the
@@ -178,18 +183,27 @@ pub fn grid_to_particle(
                 velocity.par_iter_mut(),
                 velocity_gradient.par_iter_mut(),
                 stencils.par_iter(),
+                touched.par_iter(),
             )
                 .into_par_iter()
                 .with_min_len(MIN_POINTS_PER_TASK)
-                .map(|(x, v, l, stencil)| {
-                    let (u, motion_gradient) = stencil.gather(
+                .map(|(x, v, l, stencil, contact)| {
+                    let u = stencil.gather(
                         remapped_velocity,
                         origin,
                         row_len,
-                        (DVec2::ZERO, DMat2::ZERO),
-                        |(u, l), node_u, w, g| (u + w * *node_u, l + outer(*node_u, g)),
+                        DVec2::ZERO,
+                        |u, node_u, w, _| u + w * *node_u,
                     );
-                    *l = motion_gradient;
+                    if *contact != DVec2::ZERO {
+                        *l = stencil.gather(
+                            remapped_velocity,
+                            origin,
+                            row_len,
+                            DMat2::ZERO,
+                            |l, node_u, _, g| l + outer(*node_u, g),
+                        );
+                    }
                     move_point(x, v, u * dt, (lo, hi))
                 })
                 .reduce(|| 0.0, Real::max);

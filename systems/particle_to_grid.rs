@@ -6,7 +6,7 @@ use crate::components::{
     TransferScratch,
 };
 use crate::contact::ForceApplication;
-use crate::math::{DMat2, DVec2};
+use crate::math::DVec2;
 use crate::resources::{
     Clock, ContactSettings, Diagnostics, Gravity, Grid, NumericalFailure, Settings, SharedLayers,
 };
@@ -81,18 +81,18 @@ pub fn particle_to_grid(
             stencils,
             order,
             |p| {
-                let (contact, moment) = if body_force {
-                    (points.contact_force[p], points.contact_moment[p])
+                let contact = if body_force {
+                    points.contact_force[p]
                 } else {
-                    (DVec2::ZERO, DMat2::ZERO)
+                    DVec2::ZERO
                 };
                 let force = points.mass[p] * g + points.external_force[p] + contact;
-                (points.mass[p], points.velocity[p], force, moment)
+                (points.mass[p], points.velocity[p], force)
             },
-            |&(m, v, f, moment), w, gradient| MassMomentumForce {
+            |&(m, v, f), w, _| MassMomentumForce {
                 mass: w * m,
                 momentum: (w * m) * v,
-                external_force: w * f + moment * gradient,
+                external_force: w * f,
             },
         );
         mass_momentum.add_into(layer.nodes_mut(), window, |n, t| {

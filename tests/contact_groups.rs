@@ -154,4 +154,11 @@ fn bad_contact_groups_are_refused() {
         xpic.contains("XPIC is not available with contact groups"),
         "{xpic}"
     );
+    let mut remapped = column(true, Some("column"));
+    remapped.settings.position_update = mpdem::resources::PositionUpdate::Remapped;
+    let remap = message(&remapped);
+    assert!(
+        remap.contains("Remapped is not available with contact groups"),
+        "{remap}"
+    );
 }

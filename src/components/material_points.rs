@@ -88,11 +88,13 @@ pub struct MaterialPoints {
     pub volume: Vec<Real>,
     /// In-plane deformation gradient F (F_zz = 1 in plane strain).
     pub deformation_gradient: Vec<DMat2>,
-    /// Gradient L = Σ_i u_i ⊗ G_ip of the nodal velocity u that moved the
-    /// points in the last step (per `PositionUpdate`, written by G2P): the
-    /// material's motion about the point. Contacts take the motion of the
+    /// For a point that had a contact in the last step, the gradient
+    /// L = Σ_i u_i ⊗ G_ip of the nodal velocity u that moved it (per
+    /// `PositionUpdate`, written by G2P): the material's motion about the
+    /// point; zero for the others. Contacts take the motion of the
     /// material at the contact point relative to the point's centre as
-    /// L (x_c − x_p), so a rolling body does not drag its friction springs.
+    /// L (x_c − x_p), so a rolling body does not drag its friction springs
+    /// (a new contact of a point that had none takes V_p only).
     pub velocity_gradient: Vec<DMat2>,
     /// Cauchy stress σ_p.
     pub stress: Vec<SymTensor>,
@@ -108,14 +110,6 @@ pub struct MaterialPoints {
     /// Sum of this step's contact forces on the point (N/m), written by
     /// the contact systems and reset by them each step.
     pub contact_force: Vec<DVec2>,
-    /// Sum of this step's contact forces' first moments about the point,
-    /// Σ f ⊗ (x_c − x_p) over its contacts at x_c (N), written and reset
-    /// with `contact_force`. With `ForceApplication::BodyForce`, node i
-    /// receives f S_ip + M G_ip: each force acts at its contact point
-    /// (S_i(x_c) to first order in x_c − x_p), so its moment about the
-    /// point reaches the body and the rotation the contact sees, L (x_c −
-    /// x_p), is one the force does work on.
-    pub contact_moment: Vec<DMat2>,
 }
 
 impl MaterialPoints {
@@ -162,7 +156,6 @@ impl MaterialPoints {
         self.half_size.push(p.half_size);
         self.contact_radius.push(p.contact_radius);
         self.contact_force.push(DVec2::ZERO);
-        self.contact_moment.push(DMat2::ZERO);
     }
 
     /// Displacement of point `p` from its initial position.

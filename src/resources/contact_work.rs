@@ -11,9 +11,10 @@ use serde::{Deserialize, Serialize};
 #[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct ContactWork {
     /// Σ over steps and contacts of f_t · Δ(x_p − x_other), with Δ the
-    /// change over the step of the point's position relative to the other
-    /// point or to the block's surface point it touched, and f_t the force
-    /// found at the step's start (J/m). Negative when the contacts take
-    /// energy.
+    /// motion over the step of the material at the contact point (the
+    /// point's displacement plus its material's rotation about it) relative
+    /// to the other point's or to the block's surface point it touched, and
+    /// f_t the force found at the step's start (J/m). Negative when the
+    /// contacts take energy.
     pub tangential_work: Real,
 }

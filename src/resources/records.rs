@@ -91,8 +91,9 @@ pub struct EnergySample {
     pub gravity: Real,
     /// Energy the point contacts' tangential forces have taken from the
     /// bodies since the start and their springs do not hold (J/m): −W_t −
-    /// Σ |f_t|²/(2 k_t), W_t their work on the actual relative motion
-    /// ([`crate::resources::ContactWork`]): Coulomb sliding, and a new
+    /// Σ |f_t|²/(2 k_t), W_t their work on the actual relative motion at
+    /// the contact points ([`crate::resources::ContactWork`]): Coulomb
+    /// sliding, and a new
     /// contact's first stretch (by the FLIP velocity, before the pair has an
     /// actual motion). The normal dashpot's work (`normal_damping`) is not
     /// in it.

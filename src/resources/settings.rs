@@ -119,3 +119,25 @@ impl Settings {
 /// Gravitational acceleration b of eq. 1 (m/s²), the same for every body.
 #[derive(Resource, Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Gravity(pub DVec2);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn xpic_takes_only_its_own_position_update() {
+        let xpic = |position_update| Settings {
+            xpic_order: Some(2),
+            position_update,
+            ..Settings::default()
+        };
+        assert!(xpic(PositionUpdate::Midpoint).check().is_ok());
+        for other in [PositionUpdate::Forward, PositionUpdate::Remapped] {
+            let message = xpic(other).check().expect_err("refused");
+            assert!(
+                message.contains(&format!("{other:?} is a choice of eq. 11")),
+                "{message}"
+            );
+        }
+    }
+}
