@@ -20,9 +20,12 @@ use rayon::prelude::*;
 /// gets eq. 18 with the pair's law: the normal from q to p, δ the overlap,
 /// the relative velocity at the contact point, the tangential spring kept
 /// per pair while in contact. The relative velocity is, for a pair in
-/// contact last step, its actual relative motion over that step, Δ(x_p −
-/// x_q)/Δt, and for a new pair that of the FLIP velocities, V_p − V_q (see
-/// `compute_rigid_contacts` for why the actual motion). Equal and opposite forces go to the two points' `contact_force`,
+/// contact last step, the actual relative motion over that step of the two
+/// materials at last step's contact point, (Δ(x_p − x_q) + (L_p a_p −
+/// L_q a_q) Δt)/Δt with a the arms from the centres and L the gradients of
+/// the velocity that moved the points, and for a new pair that of the FLIP
+/// velocities, V_p − V_q (see `compute_rigid_contacts` for why the actual
+/// motion). Equal and opposite forces go to the two points' `contact_force`,
 /// pairs in (body, point, body, point) order.
 ///
 /// The cost grows with the points (one cell lookup each) and the candidates
@@ -32,7 +35,7 @@ use rayon::prelude::*;
 /// independent of the thread count.
 ///
 /// Reads: `Grid`, `Clock`, `BodyIndex`, `MaterialPoints` (position,
-/// velocity, contact radius). Writes: `BodyContacts`,
+/// velocity, velocity gradient, contact radius). Writes: `BodyContacts`,
 /// `MaterialPoints::contact_force`.
 pub fn compute_body_contacts(
     grid: Res<Grid>,
@@ -205,8 +208,9 @@ fn partners(laws: &[BodyPairLaw], body: u32) -> u64 {
 
 /// Eq. 18 between point `p` of body `a` and point `q` of body `b` (a < b)
 /// if their disks overlap: the normal from q to p, δ the overlap, the
-/// relative velocity at the middle of the overlap (the pair's actual motion
-/// over the last step, or for a new pair the FLIP velocities), the pair's
+/// relative velocity at the middle of the overlap (the materials' actual
+/// motion there over the last step, or for a new pair the FLIP
+/// velocities), the pair's
 /// tangential spring from `previous` (sorted by key).
 fn disk_pair(
     law: &ContactLaw,
@@ -228,20 +232,20 @@ fn disk_pair(
     }
     let normal = gap / distance;
     let at = xq + normal * (rq - 0.5 * overlap);
-    let rotation = |points: &MaterialPoints, k: u32| {
-        let k = k as usize;
-        points.velocity_gradient[k] * (at - points.position[k])
-    };
     let key = (a, p, b, q);
     let before = previous
         .binary_search_by(|c| c.key().cmp(&key))
         .ok()
         .map(|k| &previous[k]);
-    let relative = rotation(first, p) - rotation(second, q)
-        + match before {
-            Some(c) => (gap - c.separation) / dt,
-            None => first.velocity[p as usize] - second.velocity[q as usize],
-        };
+    let relative = match before {
+        Some(c) => {
+            let (arm_p, arm_q) = c.arms(rp, rq);
+            let turned = first.velocity_gradient[p as usize] * arm_p
+                - second.velocity_gradient[q as usize] * arm_q;
+            (gap - c.separation) / dt + turned
+        }
+        None => first.velocity[p as usize] - second.velocity[q as usize],
+    };
     let carried = before.map_or(DVec2::ZERO, |c| c.tangential);
     let f = pair_force(law, overlap, normal, relative, carried, dt);
     Some(BodyPairContact {

@@ -36,23 +36,28 @@ type BlockData = (
 /// disk's overlap area, per `ContactSettings::penetration`), then eq. 18 with
 /// the pair's tangential spring from the previous step (dropped on
 /// separation) and the relative velocity at the contact point x_c:
-/// * for a pair in contact last step, its actual relative motion over that
-///   step, (Δx_p − Δx_surface)/Δt, Δx_surface the motion of the block's
-///   surface point it touched;
+/// * for a pair in contact last step, the actual motion over that step of
+///   the material at last step's contact point relative to the block's
+///   surface point it touched: (Δx_p + L_p (x_c − x_p) Δt − Δx_surface)/Δt,
+///   with L_p the gradient of the velocity that moved the point (written by
+///   G2P) and last step's arm x_c − x_p;
 /// * for a new contact, the point's velocity less the block's there,
 ///   V_p − (v + ω × r).
 ///
 /// The tangential spring is thus stretched by the motion its force does
-/// work on: the force acts on the point's centre, which moves with the
-/// grid's velocity, not with its FLIP velocity V_p (nor with the material's
-/// rotation about it). A spring stretched by anything else does work it
-/// does not store, and fed energy into a body at rest on a block. The
+/// work on: the point moves with the grid's velocity, not with its FLIP
+/// velocity V_p, and the contact transfer applies the tangential force at
+/// x_c (its moment about the point reaches the body), so the material's
+/// rotation about the point, which lets a rolling body roll without
+/// dragging its spring, is motion the force works on. A spring stretched by
+/// anything else does work it does not store, and fed energy into a body
+/// at rest on a block. The
 /// force goes to the point's `contact_force`, the opposite force and its
 /// torque about the centre of mass to the block's `Reaction`, both summed in
 /// that fixed order.
 ///
 /// Reads: `Clock`, `ContactSettings`, blocks (shape, pose, velocity, mass, law, neighbour list),
-/// `MaterialPoints` (position, velocity, contact radius).
+/// `MaterialPoints` (position, velocity, velocity gradient, contact radius).
 /// Writes: `MaterialPoints::contact_force`, `BlockContacts`, `Reaction`.
 pub fn compute_rigid_contacts(
     clock: Res<Clock>,
@@ -99,17 +104,14 @@ pub fn compute_rigid_contacts(
                     .binary_search_by(|c| (c.body, c.point).cmp(&(body, p)))
                     .ok()
                     .map(|k| &previous[k]);
-                let rotation = points.velocity_gradient[i] * (geometry.point - points.position[i]);
-                let relative = rotation
-                    + match before {
-                        Some(c) => {
-                            let surface_moved = pose.to_world(c.at_on_block) - c.at;
-                            (points.position[i] - c.from - surface_moved) / clock.dt
-                        }
-                        None => {
-                            points.velocity[i] - velocity_at(pose, velocity, mass, geometry.point)
-                        }
-                    };
+                let relative = match before {
+                    Some(c) => {
+                        let surface_moved = pose.to_world(c.at_on_block) - c.at;
+                        let turned = points.velocity_gradient[i] * c.arm();
+                        (points.position[i] - c.from - surface_moved) / clock.dt + turned
+                    }
+                    None => points.velocity[i] - velocity_at(pose, velocity, mass, geometry.point),
+                };
                 let carried = before.map_or(DVec2::ZERO, |c| c.tangential);
                 let law = &law.0;
                 let (delta, normal_potential) = match settings.penetration {

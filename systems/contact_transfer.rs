@@ -14,12 +14,15 @@ use bevy_ecs::prelude::*;
 /// the body's layer with the hat functions N_i (eq. 7b's traction term).
 /// In `BodyForce` mode the particle-to-grid transfer maps
 /// `MaterialPoints::contact_force` with S_ip, and this system adds the
-/// rest of S_i(x_c) f to first order, the force's first moment about the
-/// point: (f ⊗ (x_c − x_p)) G_ip for a force f at the contact point x_c.
-/// The force then acts where it touches: its moment about the point
-/// reaches the body, and the material's rotation about the point, which
-/// stretches the contact's tangential spring, is a motion the force does
-/// work on. Contacts are visited in block order, then in each block's
+/// tangential force's first moment about the point, (f_t ⊗ (x_c − x_p))
+/// G_ip for f_t at the contact point x_c (the rest of S_i(x_c) f_t to first
+/// order). The tangential force then acts where it touches: its moment
+/// about the point reaches the body, and the material's rotation about the
+/// point, which stretches the contact's tangential spring, is motion the
+/// force does work on. The normal force, along the arm, has no moment; its
+/// first moment would stretch the material along the normal, work its
+/// spring (a potential of the centres) does not hold, so it stays at the
+/// centre. Contacts are visited in block order, then in each block's
 /// contact order, then the body–body contacts in key order (each pair's
 /// two forces), so the nodal sums are formed in a fixed order.
 ///
@@ -42,11 +45,15 @@ pub fn transfer_contact_forces(
             Transfer::Moment(numerics.shape_function, grid.stencil_grid())
         }
     };
-    let add = |points: &MaterialPoints, layer: &mut GridLayer, p: u32, force: DVec2, at: DVec2| {
+    // `force` on point p, its tangential part `tangential`, at `at`.
+    let add = |points: &MaterialPoints,
+               layer: &mut GridLayer,
+               p: u32,
+               (force, tangential, at): (DVec2, DVec2, DVec2)| {
         match &transfer {
             Transfer::Traction(count) => add_traction(&grid, points, layer, p, force, *count),
             Transfer::Moment(kernel, stencil_grid) => {
-                add_moment(*kernel, stencil_grid, points, layer, p, force, at)
+                add_moment(*kernel, stencil_grid, points, layer, p, tangential, at)
             }
         }
     };
@@ -57,7 +64,8 @@ pub fn transfer_contact_forces(
         };
         for contact in &contacts.current {
             if let Ok((_, _, points, mut layer)) = bodies.get_mut(contact.body) {
-                add(points, &mut layer, contact.point, contact.force, contact.at);
+                let acting = (contact.force, contact.tangential, contact.at);
+                add(points, &mut layer, contact.point, acting);
             }
         }
     }
@@ -66,12 +74,10 @@ pub fn transfer_contact_forces(
     }
     sort_into_scene_order(&mut body_order, bodies.iter().map(|(e, i, ..)| (*i, e)));
     for contact in &body_contacts.current {
-        for (body, point, force) in [
-            (contact.a, contact.p, contact.force),
-            (contact.b, contact.q, -contact.force),
-        ] {
+        for (body, point, sign) in [(contact.a, contact.p, 1.0), (contact.b, contact.q, -1.0)] {
             if let Ok((_, _, points, mut layer)) = bodies.get_mut(body_order[body as usize].1) {
-                add(points, &mut layer, point, force, contact.at);
+                let acting = (sign * contact.force, sign * contact.tangential, contact.at);
+                add(points, &mut layer, point, acting);
             }
         }
     }
@@ -81,7 +87,8 @@ pub fn transfer_contact_forces(
 enum Transfer {
     /// Over this many points of the contact edge of the point's domain.
     Traction(u32),
-    /// The first moment about the point, with the body's stencils.
+    /// The tangential force's first moment about the point, with the
+    /// body's stencils.
     Moment(ShapeFunction, StencilGrid),
 }
 

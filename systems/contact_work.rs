@@ -3,7 +3,6 @@
 use crate::components::{
     BlockContacts, BlockId, BodyIndex, MaterialPoints, Pose, sort_into_scene_order,
 };
-use crate::math::Real;
 use crate::resources::{BodyContacts, Clock, ContactWork};
 use bevy_ecs::prelude::*;
 
@@ -47,7 +46,7 @@ pub fn account_contact_work(
                 continue;
             };
             let k = c.point as usize;
-            let turned = points.velocity_gradient[k] * (c.at - c.from) * clock.dt;
+            let turned = points.velocity_gradient[k] * c.arm() * clock.dt;
             let moved = points.position[k] - c.from + turned;
             let surface_moved = pose.to_world(c.at_on_block) - c.at;
             done += c.tangential.dot(moved - surface_moved);
@@ -71,12 +70,7 @@ pub fn account_contact_work(
                 continue;
             };
             let (p, q) = (c.p as usize, c.q as usize);
-            // The arms from the centres to the contact point, along the
-            // normal from q to p, when the contact was found.
-            let normal = c.separation.normalize_or_zero();
-            let reach = |radius: Real| radius - 0.5 * c.overlap;
-            let arm_p = -normal * reach(first.contact_radius[p]);
-            let arm_q = normal * reach(second.contact_radius[q]);
+            let (arm_p, arm_q) = c.arms(first.contact_radius[p], second.contact_radius[q]);
             let turned = (first.velocity_gradient[p] * arm_p - second.velocity_gradient[q] * arm_q)
                 * clock.dt;
             let moved = first.position[p] - second.position[q] - c.separation;

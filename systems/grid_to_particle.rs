@@ -34,7 +34,8 @@ use rayon::prelude::*;
 /// into the wall removed.
 ///
 /// Reads: `Grid`, `Settings`, `Clock`, `GridLayer`, `TransferScratch::stencils`,
-/// `order` and `undamped`, `MaterialPoints::mass`.
+/// `order` and `undamped`, `MaterialPoints` (mass, contact force: the
+/// points in contact this step).
 /// Writes: `MaterialPoints` (position, velocity, velocity gradient of the
 /// motion), `TransferScratch::remap`
 /// and `damped`, `DampedEnergy` (what the update took from the points),
@@ -62,7 +63,8 @@ pub fn grid_to_particle(
     // material's motion about each point in contact, which its contacts'
     // springs take next step and whose work the balance counts.
     let (of_old, of_new) = match settings.position_update {
-        _ if order >= 1 => (1.0, 0.0),
+        // Eq. 12b moves by S v^n + ½ (V^{n+1} − V^n) ≈ ½ S (v^n + v^{n+1}).
+        _ if order >= 1 => (0.5, 0.5),
         PositionUpdate::Midpoint => (0.5, 0.5),
         PositionUpdate::Forward => (0.0, 1.0),
         PositionUpdate::Remapped => (0.0, 0.0),

@@ -27,13 +27,14 @@ fn reference_with_a_sharp_corner_is_the_pendulum_of_the_issue() {
 }
 
 /// Known miss (README, toppling): since the contacts take the actual
-/// motion and apply their moment (energy consistent), the elastic block
-/// topples faster than the rigid reference: +6% to +13% at 18° and 20°,
-/// +20% to +24% at 16°. The same block ten times stiffer comes within
-/// 4–6% at 18°, so the gap is the block's elasticity, which the rigid
-/// reference leaves out; the targets stay as the issue's evidence asks.
+/// motion and apply their tangential force's moment (energy consistent),
+/// the elastic block topples faster than the rigid reference: +6% to +13%
+/// at 18° and 20°, +19% to +23% at 16°. Ten times stiffer, the 18° block
+/// comes within 4–6%, so the block's elasticity, which the rigid reference
+/// leaves out, is part of the gap; the rest is not settled (README). The
+/// targets stay as the issue's evidence asks.
 #[test]
-#[ignore = "known miss: the elastic block topples 6-24% faster than the rigid reference"]
+#[ignore = "known miss: the elastic block topples 6-23% faster than the rigid reference"]
 fn toppling_block_follows_the_rigid_block_with_the_outline_of_its_disks() {
     // ψ at 0.3 and 0.4 s within 5% (18°, 20°) and 20% (16°) of the rigid
     // block whose corners are rounded to the disk radius; 14° reported;

@@ -147,6 +147,13 @@ pub struct PointContact {
     pub potential: Real,
 }
 
+impl PointContact {
+    /// The arm from the point's centre to the contact point, x_c − x_p.
+    pub fn arm(&self) -> DVec2 {
+        self.at - self.from
+    }
+}
+
 /// This step's contacts of the block, in neighbour-list order, and last
 /// step's (for the tangential history, kept per (block, point) pair while in
 /// contact and dropped on separation).

@@ -8,12 +8,17 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum ForceApplication {
     /// The force is a body force of the point, mapped with S_ip like
-    /// gravity (default: cheapest, and what the paper's BodyForce runs use).
+    /// gravity (the paper's BodyForce runs), plus the tangential force's
+    /// first moment about the point, (f_t ⊗ (x_c − x_p)) G_ip, so that it
+    /// acts at the contact point x_c, where the contact's tangential spring
+    /// measures the motion (default: cheapest).
     #[default]
     BodyForce,
     /// The force is a traction on the edge of the point's domain that faces
     /// the contact, split evenly over `points` points, each share mapped with
-    /// the grid's hat functions N_i.
+    /// the grid's hat functions N_i. The edge points lie near the contact
+    /// point, not at it: the tangential spring's motion and the force's work
+    /// then match less closely than with `BodyForce`.
     Traction {
         /// Number of integration points on the edge (≥ 1; the paper uses 5).
         points: u32,

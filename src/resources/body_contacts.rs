@@ -49,6 +49,15 @@ impl BodyPairContact {
     pub fn key(&self) -> (u32, u32, u32, u32) {
         (self.a, self.p, self.b, self.q)
     }
+
+    /// The arms from the two points' centres to the contact point, x_c −
+    /// x_p and x_c − x_q, given the points' disk radii: along the normal
+    /// from q to p, each the radius less half the overlap.
+    pub fn arms(&self, radius_p: Real, radius_q: Real) -> (DVec2, DVec2) {
+        let normal = self.separation.normalize_or_zero();
+        let reach = |radius: Real| radius - 0.5 * self.overlap;
+        (-normal * reach(radius_p), normal * reach(radius_q))
+    }
 }
 
 /// The body-contact laws, this step's contacts and last step's (for the

@@ -27,7 +27,7 @@ pub enum PositionUpdate {
     /// frequency ω) and the velocity updated by the force at x^n, each step
     /// multiplies the spring's phase-space area by 1 + (ωΔt)²/2: undamped
     /// contacts gain energy (a block resting undamped on the ground gains
-    /// 25 times gravity's work on it in 1 s). Damped scenes, as the
+    /// 73 times gravity's work on it in 1 s). Damped scenes, as the
     /// paper's, do not show it.
     #[default]
     Midpoint,
@@ -39,10 +39,12 @@ pub enum PositionUpdate {
     /// `Remapped`).
     Forward,
     /// x += ṽ Δt with ṽ = Σ S_ip ṽ_i, where ṽ_i = Σ_p S_ip m_p V_p^{n+1} / m_i
-    /// (constrained) maps the points' new velocities back to the nodes: the
-    /// velocity from which the next step's USF strain rate is computed. The
-    /// material and the contact springs then see one displacement field,
-    /// and the contact springs are integrated by symplectic Euler. Under
+    /// (constrained) maps the points' new velocities back to the nodes with
+    /// the stencils at x^n: the field from which the next step's USF strain
+    /// rate is computed, there with the stencils at x^{n+1}. The material
+    /// and the contact springs then see one displacement field (to that
+    /// difference), and the contact springs are integrated by symplectic
+    /// Euler. USF only (under USL use `Forward`). Under
     /// USF with FLIP, `Midpoint` and `Forward` move the points with the
     /// unmapped grid velocity while the strain follows the mapped one; with
     /// stiff DEM contacts that mismatch feeds energy in (a block resting on
@@ -103,6 +105,11 @@ impl Settings {
         fraction(self.pic_fraction).map_err(|e| format!("pic_fraction: {e}"))?;
         damping(self.grid_damping).map_err(|e| format!("grid_damping: {e}"))?;
         damping(self.particle_damping).map_err(|e| format!("particle_damping: {e}"))?;
+        if self.position_update == PositionUpdate::Remapped && self.scheme == UpdateScheme::Usl {
+            return Err(
+                "position_update: Remapped moves the points with the velocity USF's strain follows; under USL the strain follows the grid's new velocity: use Forward".into(),
+            );
+        }
         if let Some(m) = self.xpic_order {
             xpic_order(m).map_err(|e| format!("xpic_order: {e}"))?;
             if self.position_update != PositionUpdate::Midpoint {
@@ -139,5 +146,17 @@ mod tests {
                 "{message}"
             );
         }
+    }
+
+    #[test]
+    fn remapped_positions_are_for_usf() {
+        let remapped = |scheme| Settings {
+            scheme,
+            position_update: PositionUpdate::Remapped,
+            ..Settings::default()
+        };
+        assert!(remapped(UpdateScheme::Usf).check().is_ok());
+        let message = remapped(UpdateScheme::Usl).check().expect_err("refused");
+        assert!(message.contains("under USL"), "{message}");
     }
 }
