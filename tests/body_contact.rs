@@ -92,9 +92,10 @@ fn a_ring_thrown_at_a_rigid_wall_keeps_its_energy_balance() {
     );
     // The springs hold 9.6% of the energy at the impact (measured), so
     // leaving them out would show; what the balance still moves by is the
-    // scheme's own error, measured 1.4% under the scene's eq. 11b (0.5%
-    // with the forward update; the energy itself falls 3.1%, the
-    // tangential forces having taken 4.4%).
+    // scheme's own error, measured 1.21% under the scene's eq. 11b (the
+    // energy itself falls 4.4%, the tangential forces having taken 5.1%;
+    // before the contacts took the actual motion, 1.4%, and 0.5% with the
+    // forward update).
     assert!(peak_contact > 0.05 * samples[0].total(), "{peak_contact}");
     assert!(widest <= 0.02, "balance swings by {widest}");
 }
@@ -194,8 +195,8 @@ fn disks_that_only_reach_the_outline_interlock_and_dissipate() {
         100.0 * frictionless_forward
     );
     // Each bound sits between the two measured values with a margin
-    // (measured: 235 / 104 pairs at most, mean |n_y| 0.70 / 0.39, mean
-    // overlap 0.49 / 0.30 r, dissipated 7.6% / 1.7%, drift −7.2% / −1.0%).
+    // (measured: 228 / 99 pairs at most, mean |n_y| 0.65 / 0.36, mean
+    // overlap 0.53 / 0.30 r, dissipated 8.45% / 2.34%, drift −7.58% / −1.58%).
     assert!(
         outline_shape.across > 0.6,
         "half-spacing disks' normals {}",
