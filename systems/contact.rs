@@ -47,7 +47,8 @@ type BlockData = (
 /// The tangential spring is thus stretched by the motion its force does
 /// work on: the point moves with the grid's velocity, not with its FLIP
 /// velocity V_p, and the contact transfer applies the tangential force at
-/// x_c (its moment about the point reaches the body), so the material's
+/// x_c (its moment about the point reaches the body; in `BodyForce` mode,
+/// while `Traction` puts it on the domain's edge near x_c), so the material's
 /// rotation about the point, which lets a rolling body roll without
 /// dragging its spring, is motion the force works on. A spring stretched by
 /// anything else does work it does not store, and fed energy into a body
