@@ -30,9 +30,9 @@ fn reference_with_a_sharp_corner_is_the_pendulum_of_the_issue() {
 /// motion and apply their tangential force's moment (energy consistent),
 /// the elastic block topples faster than the rigid reference: +6% to +13%
 /// at 18° and 20°, +19% to +23% at 16°. Ten times stiffer, the 18° block
-/// comes within 4–6%, so the block's elasticity, which the rigid reference
-/// leaves out, is part of the gap; the rest is not settled (README). The
-/// targets stay as the issue's evidence asks.
+/// comes within 4–6%, a hundred times stiffer within 2.4–3.8% (by hand), so
+/// the gap is mostly the block's elasticity, which the rigid reference
+/// leaves out (README). The targets stay as the issue's evidence asks.
 #[test]
 #[ignore = "known miss: the elastic block topples 6-23% faster than the rigid reference"]
 fn toppling_block_follows_the_rigid_block_with_the_outline_of_its_disks() {
