@@ -59,7 +59,7 @@ pub fn grid_to_particle(
     let remapped = settings.position_update == PositionUpdate::Remapped;
     let order = settings.xpic_order.unwrap_or(0);
     // The nodal velocity that moves the points, as weights of v^n and
-    // v^{n+1} (the remapped one is taken below): its gradient is the
+    // v^{n+1} (none for the remapped one, taken below): its gradient is the
     // material's motion about each point in contact, which its contacts'
     // springs take next step and whose work the balance counts.
     let (of_old, of_new) = match settings.position_update {
@@ -129,19 +129,13 @@ pub fn grid_to_particle(
                 // What the undamped pure FLIP update would give, for the
                 // energy balance.
                 let flip = if grid_damped {
-                    let free =
-                        stencil.gather(undamped, origin, row_len, DVec2::ZERO, |acc, u, w, _| {
-                            acc + w * *u
-                        });
+                    let free = stencil.interpolate(undamped, origin, row_len);
                     *v + (free - grid_old)
                 } else {
                     *v + (grid_new - grid_old)
                 };
                 let step = if order >= 1 {
-                    let smoothed =
-                        stencil.gather(star, origin, row_len, DVec2::ZERO, |acc, u, w, _| {
-                            acc + w * *u
-                        });
+                    let smoothed = stencil.interpolate(star, origin, row_len);
                     let next = smoothed + change;
                     let step = (grid_old + 0.5 * (next - *v)) * dt;
                     *v = next;
@@ -190,13 +184,7 @@ pub fn grid_to_particle(
                 .into_par_iter()
                 .with_min_len(MIN_POINTS_PER_TASK)
                 .map(|(x, v, l, stencil, contact)| {
-                    let u = stencil.gather(
-                        remapped_velocity,
-                        origin,
-                        row_len,
-                        DVec2::ZERO,
-                        |u, node_u, w, _| u + w * *node_u,
-                    );
+                    let u = stencil.interpolate(remapped_velocity, origin, row_len);
                     if *contact != DVec2::ZERO {
                         *l = stencil.gather(
                             remapped_velocity,
@@ -313,9 +301,7 @@ fn xpic_velocities(
             .zip(stencils.par_iter())
             .with_min_len(MIN_POINTS_PER_TASK)
             .for_each(|(v, stencil)| {
-                *v = stencil.gather(from, origin, row_len, DVec2::ZERO, |acc, u, w, _| {
-                    acc + w * *u
-                });
+                *v = stencil.interpolate(from, origin, row_len);
             });
         map_to_nodes(
             mass,

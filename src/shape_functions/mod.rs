@@ -199,6 +199,14 @@ impl Stencil {
         acc
     }
 
+    /// Σ_i S_ip u_i of a row-major nodal field `values` (as in [`Self::gather`]).
+    #[inline(always)]
+    pub fn interpolate(&self, values: &[DVec2], origin: [u32; 2], row_len: usize) -> DVec2 {
+        self.gather(values, origin, row_len, DVec2::ZERO, |acc, u, w, _| {
+            acc + w * *u
+        })
+    }
+
     /// Calls `f(value, S_ip, G_ip)` on the nine stencil nodes of a row-major
     /// rectangle `values` of nodes whose lower-left node is grid node
     /// `origin` and whose rows are `row_len` long.
