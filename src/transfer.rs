@@ -130,14 +130,15 @@ pub struct Scatter<T> {
 impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
     /// Scatters every point into the patches, in chunks of `order` (sorted
     /// from these `stencils`): for point p, `per_point(p)` computes what the
-    /// point carries once, then `per_node(&carried, S_ip, G_ip)` gives its
-    /// contribution to each stencil node.
+    /// point carries once, then `per_node(&carried, S_ip, G_ip, [a, b])`
+    /// gives its contribution to stencil node (a, b) (see
+    /// [`Stencil::scatter`]).
     pub fn scatter<P>(
         &mut self,
         stencils: &[Stencil],
         order: &ScatterOrder,
         per_point: impl Fn(usize) -> P + Sync,
-        per_node: impl Fn(&P, Real, DVec2) -> T + Sync,
+        per_node: impl Fn(&P, Real, DVec2, [usize; 2]) -> T + Sync,
     ) {
         let widest = order.window.width();
         let order = order.points();
@@ -160,7 +161,7 @@ impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
                         &mut patch.values,
                         origin,
                         patch.width,
-                        |value, w, g| *value += per_node(&carried, w, g),
+                        |value, w, g, k| *value += per_node(&carried, w, g, k),
                     );
                 }
             });
@@ -277,7 +278,7 @@ mod tests {
                 let mut order = ScatterOrder::default();
                 order.sort_by_row(&stencils, NodeRect::whole(nodes));
                 let mut scatter = Scatter::<Real>::default();
-                scatter.scatter(&stencils, &order, |p| 1.0 + p as Real, |m, w, _| m * w);
+                scatter.scatter(&stencils, &order, |p| 1.0 + p as Real, |m, w, _, _| m * w);
                 let mut grid = vec![0.0; nodes[0] * nodes[1]];
                 scatter.add_into(&mut grid, NodeRect::whole(nodes), |n, v| *n += v);
                 grid
@@ -292,7 +293,7 @@ mod tests {
         );
         let mut reference = vec![0.0; nodes[0] * nodes[1]];
         for (p, s) in stencils.iter().enumerate() {
-            s.scatter(&mut reference, [0, 0], nodes[0], |r, w, _| {
+            s.scatter(&mut reference, [0, 0], nodes[0], |r, w, _, _| {
                 *r += (1.0 + p as Real) * w
             });
         }
@@ -332,7 +333,7 @@ mod tests {
             let mut order = ScatterOrder::default();
             order.sort_by_row(stencils, NodeRect::whole(grid.nodes));
             let mut scatter = Scatter::<Real>::default();
-            scatter.scatter(stencils, &order, |_| 1.0, |m, w, _| m * w);
+            scatter.scatter(stencils, &order, |_| 1.0, |m, w, _, _| m * w);
             scatter.patch_nodes()
         };
         let (sorted, unsorted) = (patch_nodes(&ordered), patch_nodes(&mixed));

@@ -112,7 +112,7 @@ fn add_moment(
     let moment = outer(force, at - position);
     let window = layer.window();
     let (origin, row_len) = (window.start.map(|k| k as u32), window.width());
-    stencil.scatter(layer.nodes_mut(), origin, row_len, |node, _, g| {
+    stencil.scatter(layer.nodes_mut(), origin, row_len, |node, _, g, _| {
         node.external_force += moment * g;
     });
 }

@@ -6,7 +6,7 @@ use crate::components::{
 };
 use crate::math::{DMat2, DVec2, Real, local_damping, outer};
 use crate::resources::{Clock, Grid, PositionUpdate, Settings};
-use crate::shape_functions::Stencil;
+use crate::shape_functions::{Stencil, StencilGrid};
 use crate::transfer::{MIN_POINTS_PER_TASK, Scatter, ScatterOrder};
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
@@ -18,8 +18,8 @@ use rayon::prelude::*;
 /// * eq. 11b: x^{n+1} = x^n + ½(v^n + v^{n+1}) Δt − ½ β (V^n − v^n) Δt, or
 ///   with `PositionUpdate::Forward`, x^{n+1} = x^n + v^{n+1} Δt, or with
 ///   `PositionUpdate::Remapped`, x^{n+1} = x^n + Σ S_ip ṽ_i Δt, ṽ_i the
-///   new point velocities mapped back to the nodes (mass-weighted,
-///   constrained);
+///   new point velocities mapped back to the nodes as P2G maps them
+///   (mass-weighted, affine with `Settings::affine_transfer`, constrained);
 ///
 /// or, with an XPIC order m (eq. 12), v* = Σ_{k=1..m} (−1)^{k+1} C(m, k) u_k
 /// on the nodes, u_1 = v_i^n and u_k = S⁺ S u_{k−1} (interpolated to the
@@ -37,7 +37,8 @@ use rayon::prelude::*;
 /// `order` and `undamped`, `MaterialPoints` (mass, contact force: the
 /// points in contact this step).
 /// Writes: `MaterialPoints` (position, velocity, velocity gradient of the
-/// motion), `TransferScratch::remap`
+/// motion; with `Settings::affine_transfer`, C_p = Σ_i v_i^{n+1} ⊗ G_ip for
+/// the next P2G), `TransferScratch::remap`
 /// and `damped`, `DampedEnergy` (what the update took from the points),
 /// `StepTravel` (the largest |x^{n+1} − x^n|, a maximum, so exact for any
 /// thread count).
@@ -57,6 +58,7 @@ pub fn grid_to_particle(
     let (dt, beta, alpha) = (clock.dt, settings.pic_fraction, settings.particle_damping);
     let forward = settings.position_update == PositionUpdate::Forward;
     let remapped = settings.position_update == PositionUpdate::Remapped;
+    let affine = settings.affine_transfer;
     let order = settings.xpic_order.unwrap_or(0);
     // The nodal velocity that moves the points, as weights of v^n and
     // v^{n+1} (none for the remapped one, taken below): its gradient is the
@@ -92,6 +94,7 @@ pub fn grid_to_particle(
             position,
             velocity,
             velocity_gradient,
+            affine_gradient,
             mass,
             contact_force,
             ..
@@ -109,13 +112,22 @@ pub fn grid_to_particle(
             .into_par_iter()
             .with_min_len(MIN_POINTS_PER_TASK)
             .zip(taken.par_iter_mut())
-            .zip((velocity_gradient.par_iter_mut(), touched.par_iter()))
-            .map(|(((x, v, stencil, m), taken), (l, contact))| {
+            .zip((
+                velocity_gradient.par_iter_mut(),
+                affine_gradient.par_iter_mut(),
+                touched.par_iter(),
+            ))
+            .map(|(((x, v, stencil, m), taken), (l, c, contact))| {
                 let zero = (DVec2::ZERO, DVec2::ZERO);
                 let (grid_old, grid_new) =
                     stencil.gather(nodes, origin, row_len, zero, |(old, new), node, w, _| {
                         (old + w * node.velocity, new + w * node.velocity_new)
                     });
+                if affine {
+                    *c = stencil.gather(nodes, origin, row_len, DMat2::ZERO, |c, node, _, g| {
+                        c + outer(node.velocity_new, g)
+                    });
+                }
                 // Remapped positions: taken below.
                 *l = if *contact == DVec2::ZERO || remapped {
                     DMat2::ZERO
@@ -172,7 +184,12 @@ pub fn grid_to_particle(
             let RemapScratch {
                 momentum, current, ..
             } = remap;
-            map_to_nodes(mass, velocity, layer, transfer, momentum, current);
+            let affine = affine.then(|| AffineMap {
+                gradient: affine_gradient,
+                position,
+                grid: grid.stencil_grid(),
+            });
+            map_to_nodes(mass, velocity, affine, layer, transfer, momentum, current);
             let remapped_velocity = &*current;
             travel.0 = (
                 position.par_iter_mut(),
@@ -220,13 +237,26 @@ fn move_point(x: &mut DVec2, v: &mut DVec2, step: DVec2, (lo, hi): (DVec2, DVec2
     (*x - before).length()
 }
 
+/// What an affine map to the nodes needs besides the velocities (see
+/// `Settings::affine_transfer`).
+struct AffineMap<'a> {
+    /// C_p of each point.
+    gradient: &'a [DMat2],
+    /// x_p, where the stencils were computed.
+    position: &'a [DVec2],
+    /// Where the stencils' nodes are.
+    grid: StencilGrid,
+}
+
 /// Maps point velocities back to the layer's active nodes:
-/// u_i = Σ_p S_ip m_p V_p / m_i (zero below the layer's mass cutoff),
-/// constrained like the nodal velocities. Nodes outside the active ones
-/// keep earlier values: no stencil reaches them.
+/// u_i = Σ_p S_ip m_p V_p / m_i, or with `affine`
+/// Σ_p S_ip m_p (V_p + C_p (x_i − x_p)) / m_i as P2G maps them (zero below
+/// the layer's mass cutoff), constrained like the nodal velocities. Nodes
+/// outside the active ones keep earlier values: no stencil reaches them.
 fn map_to_nodes(
     mass: &[Real],
     velocity: &[DVec2],
+    affine: Option<AffineMap>,
     layer: &GridLayer,
     (stencils, scatter_order): (&[Stencil], &ScatterOrder),
     momentum: &mut Scatter<DVec2>,
@@ -234,12 +264,33 @@ fn map_to_nodes(
 ) {
     let (active, window, nodes) = (layer.active(), layer.window(), layer.nodes());
     into.resize(nodes.len(), DVec2::ZERO);
-    momentum.scatter(
-        stencils,
-        scatter_order,
-        |p| mass[p] * velocity[p],
-        |mv, w, _| w * *mv,
-    );
+    if let Some(AffineMap {
+        gradient,
+        position,
+        grid,
+    }) = affine
+    {
+        let cell = 1.0 / grid.inv_cell_size;
+        momentum.scatter(
+            stencils,
+            scatter_order,
+            |p| {
+                let base = stencils[p].base_offset(&grid, position[p]);
+                (mass[p], velocity[p], gradient[p], base)
+            },
+            |&(m, v, c, base), w, _, [a, b]| {
+                let offset = base + cell * DVec2::new(a as Real, b as Real);
+                (w * m) * (v + c * offset)
+            },
+        );
+    } else {
+        momentum.scatter(
+            stencils,
+            scatter_order,
+            |p| mass[p] * velocity[p],
+            |mv, w, _, _| w * *mv,
+        );
+    }
     active
         .rows_mut(window, into)
         .for_each(|(_, row)| row.fill(DVec2::ZERO));
@@ -306,6 +357,7 @@ fn xpic_velocities(
         map_to_nodes(
             mass,
             point_velocity,
+            None,
             layer,
             (stencils, scatter_order),
             momentum,

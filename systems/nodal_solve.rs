@@ -34,7 +34,7 @@ pub fn solve_nodal_momentum(
             stencils,
             order,
             |p| (points.volume[p], points.stress[p]),
-            |(volume, stress), _, g| -*volume * stress.dot(g),
+            |(volume, stress), _, g, _| -*volume * stress.dot(g),
         );
         let window = layer.window();
         internal_force.add_into(layer.nodes_mut(), window, |n, f| n.internal_force += f);

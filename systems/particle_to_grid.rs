@@ -6,7 +6,7 @@ use crate::components::{
     TransferScratch,
 };
 use crate::contact::ForceApplication;
-use crate::math::DVec2;
+use crate::math::{DVec2, Real};
 use crate::resources::{
     Clock, ContactSettings, Diagnostics, Gravity, Grid, NumericalFailure, Settings, SharedLayers,
 };
@@ -23,7 +23,8 @@ type StepInputs<'w> = (
 );
 
 /// Computes every point's stencil at x^n and the step's scatter order,
-/// scatters S_ip m_p, S_ip m_p V_p and
+/// scatters S_ip m_p, S_ip m_p V_p (with `Settings::affine_transfer`,
+/// S_ip m_p (V_p + C_p (x_i − x_p))) and
 /// S_ip (m_p (g + b(t)) + f_p,ext [+ f_p,contact in `BodyForce` mode]) to
 /// the body's layer (b the body's own `BodyAcceleration`, if any, at the
 /// step's start time), makes the layers of a contact group their sum
@@ -49,6 +50,7 @@ pub fn particle_to_grid(
 ) {
     let nodes = grid.nodes();
     let stencil_grid = grid.stencil_grid();
+    let cell = grid.cell_size;
     let (kernel, g) = (settings.shape_function, gravity.0);
     let body_force = contact.force_application == ForceApplication::BodyForce;
     for (name, own, points, mut layer, mut scratch) in &mut bodies {
@@ -77,24 +79,45 @@ pub fn particle_to_grid(
         }
         let window = layer.window();
         order.sort_by_row(stencils, window);
-        mass_momentum.scatter(
-            stencils,
-            order,
-            |p| {
-                let contact = if body_force {
-                    points.contact_force[p]
-                } else {
-                    DVec2::ZERO
-                };
-                let force = points.mass[p] * g + points.external_force[p] + contact;
-                (points.mass[p], points.velocity[p], force)
-            },
-            |&(m, v, f), w, _| MassMomentumForce {
-                mass: w * m,
-                momentum: (w * m) * v,
-                external_force: w * f,
-            },
-        );
+        let force_on = |p: usize| {
+            let contact = if body_force {
+                points.contact_force[p]
+            } else {
+                DVec2::ZERO
+            };
+            points.mass[p] * g + points.external_force[p] + contact
+        };
+        if settings.affine_transfer {
+            let stencils = &*stencils;
+            mass_momentum.scatter(
+                stencils,
+                order,
+                |p| {
+                    let base = stencils[p].base_offset(&stencil_grid, points.position[p]);
+                    let velocity = (points.velocity[p], points.affine_gradient[p], base);
+                    (points.mass[p], velocity, force_on(p))
+                },
+                |&(m, (v, c, base), f), w, _, [a, b]| {
+                    let offset = base + cell * DVec2::new(a as Real, b as Real);
+                    MassMomentumForce {
+                        mass: w * m,
+                        momentum: (w * m) * (v + c * offset),
+                        external_force: w * f,
+                    }
+                },
+            );
+        } else {
+            mass_momentum.scatter(
+                stencils,
+                order,
+                |p| (points.mass[p], points.velocity[p], force_on(p)),
+                |&(m, v, f), w, _, _| MassMomentumForce {
+                    mass: w * m,
+                    momentum: (w * m) * v,
+                    external_force: w * f,
+                },
+            );
+        }
         mass_momentum.add_into(layer.nodes_mut(), window, |n, t| {
             n.mass += t.mass;
             n.momentum += t.momentum;

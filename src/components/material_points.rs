@@ -96,6 +96,10 @@ pub struct MaterialPoints {
     /// L (x_c − x_p), so a rolling body does not drag its friction springs
     /// (a new contact of a point that had none takes V_p only).
     pub velocity_gradient: Vec<DMat2>,
+    /// With `Settings::affine_transfer`, C_p = Σ_i v_i^{n+1} ⊗ G_ip, the
+    /// gradient at the point of the nodal velocity of the last G2P, which
+    /// the next P2G carries to the nodes; zero without it.
+    pub affine_gradient: Vec<DMat2>,
     /// Cauchy stress σ_p.
     pub stress: Vec<SymTensor>,
     /// Accumulated small strain ∫ D dt (logarithmic for straight paths).
@@ -150,6 +154,7 @@ impl MaterialPoints {
         self.volume.push(p.volume);
         self.deformation_gradient.push(DMat2::IDENTITY);
         self.velocity_gradient.push(DMat2::ZERO);
+        self.affine_gradient.push(DMat2::ZERO);
         self.stress.push(p.stress);
         self.strain.push(SymTensor::ZERO);
         self.external_force.push(DVec2::ZERO);

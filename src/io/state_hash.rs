@@ -51,6 +51,12 @@ impl StateHasher {
                 .iter()
                 .flat_map(|l| l.to_cols_array()),
         );
+        self.add_reals(
+            points
+                .affine_gradient
+                .iter()
+                .flat_map(|c| c.to_cols_array()),
+        );
         self.add_reals(points.volume.iter().copied());
         self.add_reals(points.stress.iter().flat_map(|s| s.to_array()));
         self.add_reals(points.strain.iter().flat_map(|s| s.to_array()));

@@ -169,6 +169,14 @@ impl Stencil {
         })
     }
 
+    /// x_i − x_p from a point at `position` to the stencil's lower-left node
+    /// (grid node `base`); node (a, b) of the stencil is (a, b) h further.
+    #[inline(always)]
+    pub fn base_offset(&self, grid: &StencilGrid, position: DVec2) -> DVec2 {
+        let base = DVec2::new(Real::from(self.base[0]), Real::from(self.base[1]));
+        grid.origin + base / grid.inv_cell_size - position
+    }
+
     /// Folds `f(acc, value, S_ip, G_ip)` over the nine stencil nodes of a
     /// row-major field `values` whose first value is grid node `origin`,
     /// with `row_len` nodes per row.
@@ -207,16 +215,18 @@ impl Stencil {
         })
     }
 
-    /// Calls `f(value, S_ip, G_ip)` on the nine stencil nodes of a row-major
-    /// rectangle `values` of nodes whose lower-left node is grid node
-    /// `origin` and whose rows are `row_len` long.
+    /// Calls `f(value, S_ip, G_ip, [a, b])` on the nine stencil nodes of a
+    /// row-major rectangle `values` of nodes whose lower-left node is grid
+    /// node `origin` and whose rows are `row_len` long; (a, b) is the node's
+    /// place in the stencil (grid node `base` + (a, b)), for quantities that
+    /// depend on where the node is (see [`Self::base_offset`]).
     #[inline(always)]
     pub fn scatter<T>(
         &self,
         values: &mut [T],
         origin: [u32; 2],
         row_len: usize,
-        mut f: impl FnMut(&mut T, Real, DVec2),
+        mut f: impl FnMut(&mut T, Real, DVec2, [usize; 2]),
     ) {
         let column = (self.base[0] - origin[0]) as usize;
         for b in 0..3 {
@@ -224,11 +234,12 @@ impl Stencil {
             let row = values[first..first + 3]
                 .iter_mut()
                 .zip(self.wx.iter().zip(&self.gx));
-            for (value, (wx, gx)) in row {
+            for (a, (value, (wx, gx))) in row.enumerate() {
                 f(
                     value,
                     wx * self.wy[b],
                     DVec2::new(gx * self.wy[b], wx * self.gy[b]),
+                    [a, b],
                 );
             }
         }
