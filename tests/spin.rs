@@ -96,8 +96,8 @@ fn run(affine_transfer: bool) -> Spin {
         spin.momentum = (l0, spin.momentum.1.min(l), spin.momentum.2.max(l));
         spin.kinetic = (k0, spin.kinetic.1.min(k), spin.kinetic.2.max(k));
         let step: Real = now - angle;
-        spin.turned += (step + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
-            - std::f64::consts::PI;
+        spin.turned +=
+            (step + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
         angle = now;
     }
     spin
@@ -117,7 +117,11 @@ fn a_freely_spinning_block_keeps_its_angular_momentum_with_the_affine_transfer()
     let kept = |(start, low, high): (Real, Real, Real)| {
         (low / start - 1.0).abs() < 5e-3 && (high / start - 1.0).abs() < 5e-3
     };
-    assert!(kept(affine.momentum), "angular momentum {:?}", affine.momentum);
+    assert!(
+        kept(affine.momentum),
+        "angular momentum {:?}",
+        affine.momentum
+    );
     assert!(kept(affine.kinetic), "kinetic energy {:?}", affine.kinetic);
     assert!(
         (affine.turned - std::f64::consts::TAU).abs() < 1.0_f64.to_radians(),

@@ -1,15 +1,23 @@
-//! Paper section 4.2.1: an elastic block on a slope, toppling or not,
-//! against the exact motion of a rigid block rocking on its downhill corner.
+//! Paper section 4.2.1: an elastic block on a slope, toppling or not.
 //!
-//! The material points are DEM disks inset by half a point spacing, so the
-//! outline the slope touches is the block with its corners rounded to the
-//! disk radius r. Its exact motion (rigid, no slip, the corner arc rolling)
-//! is what the engine must reproduce; with r = 0 it is the sharp-corner
-//! pendulum of the issue, φ'' = (3g/(4L)) sin φ.
+//! Judged against the same elastic block on the same contact disks by
+//! explicit finite elements (`elastic_block`), a reference independent of
+//! the material point method. Reported against the exact motion of a rigid
+//! block rocking on its downhill corner: with r = 0 the sharp-corner
+//! pendulum of the issue, φ'' = (3g/(4L)) sin φ, and with the corner rounded
+//! to the disk radius r the outline the disks give the block. The scenes'
+//! block is far from rigid for this motion: its first bending period as a
+//! clamped beam (Euler–Bernoulli, about 55 ms) is a third of the rocking's
+//! growth time 1/ω (0.17 s), and
+//! its contact springs yield too, so it topples faster than either rigid
+//! block (README, toppling).
 
+use super::elastic_block::ElasticBlock;
 use super::{Check, Context, VerifyError, first, percent, probe_samples};
 use crate::Simulation;
+use crate::materials::MaterialModel;
 use crate::math::{DVec2, Real};
+use crate::scene::Scene;
 
 /// Width and height of the scenes' block (m).
 const BLOCK: (Real, Real) = (0.1, 0.4);
@@ -89,126 +97,108 @@ pub fn simulated_rotation(sim: &Simulation, times: &[Real]) -> Result<Vec<Real>,
         .collect()
 }
 
-/// The tolerance on ψ against the rounded-corner rigid block on a slope of
-/// `slope` degrees, if the slope is judged. 5% at 18° and 20°: the block is
-/// elastic (E = 1e8 Pa), starts stress-free (it rings as its weight comes
-/// on) and rests on springs (k_n = 2e8 N/m), all absent from the rigid
-/// reference. 20% at 16° (the issue's tolerance there): it starts
-/// only 3° past the rounded block's critical angle (13.0°), where the early
-/// ringing grows the most. 14° is reported, not judged: 1° past that
-/// angle, the early ringing decides the timing (measured +34% at 0.3 s).
-pub fn tolerance(slope: u32) -> Option<Real> {
-    match slope {
-        14 => None,
-        16 => Some(0.20),
-        _ => Some(0.05),
-    }
+/// The tolerance on ψ against the finite-element block: 2%. The two
+/// discretisations of the same block differ at the scale of the point
+/// spacing (GIMP domains and Q4 elements, one per point): with
+/// `affine_transfer` the scenes come within 1.4% at 14° and 0.5–0.9% at 16°
+/// to 20°, and at 18° the gap shrinks from 0.7% to 0.4% when both halve
+/// their spacing; 14°, 1° past the rounded block's critical angle, is the
+/// most sensitive to any early difference.
+const TOLERANCE: Real = 0.02;
+
+/// The scene's block by finite elements: its rectangle, linear elastic
+/// material and density, the scene's gravity and the first rigid block's
+/// contact law, with disks at the scene's point spacing.
+pub fn elastic_reference(scene: &Scene) -> Result<ElasticBlock, VerifyError> {
+    let body = first(&scene.bodies, "bodies")?;
+    let material = scene
+        .materials
+        .iter()
+        .find(|m| m.name == body.material)
+        .ok_or_else(|| VerifyError::Measurement(format!("no material {}", body.material)))?;
+    let MaterialModel::LinearElastic(elastic) = material.model else {
+        return Err(VerifyError::Measurement(
+            "the finite-element reference is for a linear elastic block".into(),
+        ));
+    };
+    let (min, max) = body.shape.bounds();
+    Ok(ElasticBlock {
+        size: max - min,
+        youngs_modulus: elastic.youngs_modulus,
+        poisson_ratio: elastic.poisson_ratio,
+        density: material.density,
+        gravity: scene.gravity,
+        point_spacing: scene.grid.cell_size / Real::from(body.points_per_cell),
+        contact: first(&scene.blocks, "blocks")?.contact,
+    })
+}
+
+/// ψ (rad) at `TIMES` of the finite-element block of `scene`, measured
+/// between the material points that the simulation's probes follow.
+fn elastic_rotation(scene: &Scene, sim: &Simulation) -> Result<Vec<Real>, VerifyError> {
+    let block = elastic_reference(scene)?;
+    let (corner, _) = first(&scene.bodies, "bodies")?.shape.bounds();
+    let start = |probe: &str| -> Result<DVec2, VerifyError> {
+        Ok(first(&probe_samples(sim, probe)?, "probe samples")?.position - corner)
+    };
+    Ok(block.rotations(start("top")?, start("bottom")?, &TIMES))
 }
 
 /// `scenes/toppling_<slope>.ron` for slopes of 14°, 16°, 18° and 20°, to 0.4 s.
 pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
     let mut checks = Vec::new();
-    let mut compared = Vec::new();
     for slope in [14, 16, 18, 20] {
         let mut scene = ctx.scene(&format!("toppling_{slope}.ron"))?;
         scene.time.end = TIMES[TIMES.len() - 1];
         let sim = ctx.run(&format!("toppling_{slope}"), &scene)?;
         let psi = simulated_rotation(&sim, &TIMES)?;
+        let elastic = elastic_rotation(&scene, &sim)?;
         let (w, h) = BLOCK;
         let rounded = rocking_block(w, h, DISK_RADIUS, slope as Real, &TIMES);
         let sharp = rocking_block(w, h, 0.0, slope as Real, &TIMES);
         for k in 0..TIMES.len() {
-            let error = psi[k] / rounded[k] - 1.0;
-            if slope == STIFFER_SLOPE {
-                compared.push(error);
-            }
-            let quantity = format!(
-                "{slope}°: ψ({} s) against the rigid block rounded to r = {DISK_RADIUS} m ({:.2}°)",
-                TIMES[k],
-                rounded[k].to_degrees()
-            );
-            let measured = format!("{:.2}° ({})", psi[k].to_degrees(), percent(error, 1));
-            checks.push(match tolerance(slope) {
-                Some(tolerance) => Check::judged(
-                    quantity,
-                    measured,
-                    format!("within {:.0}%", 100.0 * tolerance),
-                    error.abs() <= tolerance,
-                ),
-                None => Check::reported(
-                    quantity,
-                    measured,
-                    "not judged: 1° past the rounded block's critical angle",
-                ),
-            });
-            checks.push(Check::reported(
+            let error = psi[k] / elastic[k] - 1.0;
+            checks.push(Check::judged(
                 format!(
-                    "{slope}°: ψ({} s) against the sharp-corner pendulum",
-                    TIMES[k]
+                    "{slope}°: ψ({} s) against the same elastic block by finite elements ({:.2}°)",
+                    TIMES[k],
+                    elastic[k].to_degrees()
                 ),
-                format!("{:.2}°", psi[k].to_degrees()),
-                format!("{:.2}°", sharp[k].to_degrees()),
+                format!("{:.2}° ({})", psi[k].to_degrees(), percent(error, 1)),
+                format!("within {:.0}%", 100.0 * TOLERANCE),
+                error.abs() <= TOLERANCE,
             ));
+            for (what, reference) in [
+                (
+                    format!("the rigid block rounded to r = {DISK_RADIUS} m"),
+                    rounded[k],
+                ),
+                ("the sharp-corner pendulum".to_string(), sharp[k]),
+            ] {
+                // Below its critical angle a rigid block stays at rest (the
+                // pendulum's equation alone would swing it back uphill).
+                let (measured, expected) = if reference > 0.0 {
+                    (
+                        format!(
+                            "{:.2}° ({})",
+                            psi[k].to_degrees(),
+                            percent(psi[k] / reference - 1.0, 1)
+                        ),
+                        format!("{:.2}°", reference.to_degrees()),
+                    )
+                } else {
+                    (
+                        format!("{:.2}°", psi[k].to_degrees()),
+                        "0° (at rest: below its critical angle)".into(),
+                    )
+                };
+                checks.push(Check::reported(
+                    format!("{slope}°: ψ({} s) against {what}", TIMES[k]),
+                    measured,
+                    format!("{expected}; not judged: the block is not rigid"),
+                ));
+            }
         }
     }
-    checks.extend(stiffer_checks(ctx, &compared)?);
     Ok(checks)
-}
-
-/// Young's modulus of the stiffer block (Pa), ten times the scenes', and
-/// the step its faster waves need (s): CFL 0.58 with c = √(E/ρ) = 577 m/s.
-const STIFFER: (Real, Real) = (1e9, 1e-5);
-
-/// The slope of the stiffness comparison (°).
-const STIFFER_SLOPE: u32 = 18;
-
-/// ψ(t)/ψ_rounded(t) − 1 at `TIMES` of the `STIFFER_SLOPE` scene, with its
-/// Young's modulus and step replaced by `STIFFER` when `stiffer`.
-fn rotation_errors(ctx: &Context, stiffer: bool) -> Result<Vec<Real>, VerifyError> {
-    let slope = STIFFER_SLOPE;
-    let mut scene = ctx.scene(&format!("toppling_{slope}.ron"))?;
-    scene.time.end = TIMES[TIMES.len() - 1];
-    let name = if stiffer {
-        let (youngs_modulus, dt) = STIFFER;
-        for material in &mut scene.materials {
-            if let crate::materials::MaterialModel::LinearElastic(m) = &mut material.model {
-                m.youngs_modulus = youngs_modulus;
-            }
-        }
-        scene.time.dt = dt;
-        format!("toppling_{slope}_stiffer")
-    } else {
-        format!("toppling_{slope}")
-    };
-    let sim = ctx.run(&name, &scene)?;
-    let psi = simulated_rotation(&sim, &TIMES)?;
-    let (w, h) = BLOCK;
-    let rounded = rocking_block(w, h, DISK_RADIUS, slope as Real, &TIMES);
-    Ok(psi.iter().zip(&rounded).map(|(p, r)| p / r - 1.0).collect())
-}
-
-/// The 18° block at the scenes' E and ten times stiffer: the rigid
-/// reference leaves out the block's elasticity, so the stiffer block must
-/// come closer to it (judged at each time).
-pub fn stiffer_block(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
-    let scenes = rotation_errors(ctx, false)?;
-    stiffer_checks(ctx, &scenes)
-}
-
-/// The stiffer block's checks against the scenes' errors `scenes` (at `TIMES`).
-fn stiffer_checks(ctx: &Context, scenes: &[Real]) -> Result<Vec<Check>, VerifyError> {
-    let stiffer = rotation_errors(ctx, true)?;
-    Ok((0..TIMES.len())
-        .map(|k| {
-            Check::judged(
-                format!(
-                    "{STIFFER_SLOPE}°, E ten times the scenes' ({:.0e} Pa): ψ({} s) against the rounded rigid block",
-                    STIFFER.0, TIMES[k]
-                ),
-                format!("{} (scenes' E: {})", percent(stiffer[k], 1), percent(scenes[k], 1)),
-                "closer than at the scenes' E".to_string(),
-                stiffer[k].abs() < scenes[k].abs(),
-            )
-        })
-        .collect())
 }
