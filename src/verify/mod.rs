@@ -122,7 +122,7 @@ pub const CASES: &[Case] = &[
         name: "toppling",
         source: "paper 4.2.1",
         about: "elastic block toppling on slopes of 14–20° against the same block by finite elements",
-        minutes: 0.1,
+        minutes: 0.2,
         run: toppling::run,
     },
     Case {
