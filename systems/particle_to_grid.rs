@@ -1,5 +1,6 @@
 //! Algorithm 1, line 12: mass, momentum and external force to each body's
-//! layer (eqs. 7b, 8c, 8d), then the nodal velocity p_i / m_i.
+//! layer (eqs. 7b, 8c, 8d; the momentum affine with
+//! `Settings::affine_transfer`), then the nodal velocity p_i / m_i.
 
 use crate::components::{
     BodyAcceleration, BodyName, GridLayer, MassMomentumForce, MaterialPoints, NodeRect,

@@ -12,7 +12,8 @@ use std::ops::AddAssign;
 pub struct MassMomentumForce {
     /// S_ip m_p.
     pub mass: Real,
-    /// S_ip m_p V_p.
+    /// S_ip m_p V_p (S_ip m_p (V_p + C_p (x_i − x_p)) with
+    /// `Settings::affine_transfer`).
     pub momentum: DVec2,
     /// S_ip (m_p b + f_p,ext).
     pub external_force: DVec2,
@@ -59,7 +60,8 @@ pub struct TransferScratch {
 pub struct RemapScratch {
     /// Velocities interpolated to the points, S u_{k−1}.
     pub point_velocity: Vec<DVec2>,
-    /// Patches of the momentum scatter S m_p V_p.
+    /// Patches of the momentum scatter S m_p V_p (affine as in P2G for the
+    /// remapped positions).
     pub momentum: Scatter<DVec2>,
     /// Nodal velocities of the previous XPIC iterate u_{k−1}.
     pub previous: Vec<DVec2>,

@@ -39,7 +39,8 @@ pub enum PositionUpdate {
     /// `Remapped`).
     Forward,
     /// x += ṽ Δt with ṽ = Σ S_ip ṽ_i, where ṽ_i = Σ_p S_ip m_p V_p^{n+1} / m_i
-    /// (constrained) maps the points' new velocities back to the nodes with
+    /// (with `affine_transfer`, V_p^{n+1} + C_p (x_i − x_p); constrained)
+    /// maps the points' new velocities back to the nodes as P2G does, with
     /// the stencils at x^n: the field from which the next step's USF strain
     /// rate is computed, there with the stencils at x^{n+1}. The material
     /// and the contact springs then see one displacement field (to that
@@ -85,15 +86,17 @@ pub struct Settings {
     pub position_update: PositionUpdate,
     /// Affine momentum transfer: P2G maps V_p + C_p (x_i − x_p) to node i,
     /// C_p the gradient at the point of the nodal velocity that G2P last
-    /// interpolated (Taylor particle-in-cell; the affine velocity of APIC,
-    /// Jiang et al. 2015), so the nodes reproduce an affine velocity field
-    /// exactly, a body's rotation included. Without it a node on a body's
+    /// interpolated (Taylor particle-in-cell, Nakamura et al. 2023; with the
+    /// quadratic B-spline it is APIC's affine velocity, Jiang et al. 2015),
+    /// so the nodes reproduce an affine velocity field exactly, a body's
+    /// rotation included (where a point's support lies inside the grid: at
+    /// a wall its weights are renormalised). Without it a node on a body's
     /// edge takes the velocity of its points' mass centre, up to half a
-    /// cell inside the body: a rotating body then strains, and at one
-    /// point per cell a freely spinning block turns its spin into strain
-    /// and back within a quarter turn of 0.04 rad (`tests/spin.rs`).
-    /// Default `false`, the paper's eq. 8c; not with XPIC, whose smoothing
-    /// maps velocities without it.
+    /// cell inside the body, so a rotating body strains: at one point per
+    /// cell a freely spinning block's spin goes into strain and back and
+    /// the block does not turn (`tests/spin.rs`). C_p starts at zero, so
+    /// the first P2G is eq. 8c's. Default `false`, the paper's eq. 8c; not
+    /// with XPIC, whose smoothing maps velocities without it.
     pub affine_transfer: bool,
 }
 

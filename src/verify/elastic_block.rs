@@ -238,7 +238,7 @@ impl Disks {
 
 impl ElasticBlock {
     /// A fifth of the smaller of the elements' wave limit h/c_p and the
-    /// disks' spring limit 2√(m/k_n), m a bottom node's mass: symplectic
+    /// disks' spring limit 2√(m/k_n), m a corner node's mass: symplectic
     /// Euler is stable below both, and halving it moves the 18° scene's
     /// rotations by 3e-4° at most.
     fn time_step(&self) -> Real {
