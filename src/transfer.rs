@@ -254,7 +254,8 @@ mod tests {
     /// carrying an affine velocity field v(x) = v0 + A x as V_p = v(x_p)
     /// and C_p = A, scattered as S_ip m_p (V_p + C_p (x_i − x_p)), give
     /// every node v(x_i) exactly (to round-off), for every kernel, even
-    /// where few points reach a node.
+    /// where few points reach a node; and where a wall cuts the supports,
+    /// the offsets from the nodes' mean keep the total momentum Σ m_p V_p.
     #[test]
     fn affine_momenta_reproduce_an_affine_field_at_every_node() {
         let nodes = [21usize, 17];
@@ -292,14 +293,9 @@ mod tests {
             scatter.scatter(
                 &stencils,
                 &order,
-                |p| {
-                    (
-                        field(positions[p]),
-                        stencils[p].base_offset(&grid, positions[p]),
-                    )
-                },
-                |&(v, base), w, _, [i, j]| {
-                    let offset = base + h * DVec2::new(i as Real, j as Real);
+                |p| (field(positions[p]), stencils[p].mean_place()),
+                |&(v, mean), w, _, node| {
+                    let offset = Stencil::offset_from_mean(mean, node, h);
                     (w * (v + a * offset)).extend(w)
                 },
             );
@@ -317,6 +313,46 @@ mod tests {
             }
             assert!(reached > 100, "{kernel:?}: {reached} nodes reached");
         }
+        // At a wall the cut renormalises the weights, Σ S_ip x_i ≠ x_p: the
+        // offsets from the nodes' mean still add no momentum.
+        let walled = StencilGrid {
+            walls: [[true; 2]; 2],
+            ..grid
+        };
+        let near: Vec<DVec2> = (0..40)
+            .map(|k| grid.origin + DVec2::new(0.01 + 0.002 * k as Real, 0.5 + 0.01 * k as Real))
+            .collect();
+        let stencils: Vec<Stencil> = near
+            .iter()
+            .map(|&x| {
+                ShapeFunction::UGimp
+                    .stencil(x, DVec2::splat(h / 4.0), &walled)
+                    .unwrap()
+            })
+            .collect();
+        let cut = stencils
+            .iter()
+            .zip(&near)
+            .filter(|(st, x)| {
+                let base = DVec2::new(Real::from(st.base[0]), Real::from(st.base[1]));
+                (grid.origin + (base + st.mean_place()) * h - **x).length() > 1e-9
+            })
+            .count();
+        assert!(cut >= 5, "{cut} points cut by the wall");
+        let mut order = ScatterOrder::default();
+        order.sort_by_row(&stencils, NodeRect::whole(nodes));
+        let mut scatter = Scatter::<DVec2>::default();
+        scatter.scatter(
+            &stencils,
+            &order,
+            |p| (field(near[p]), stencils[p].mean_place()),
+            |&(v, mean), w, _, node| w * (v + a * Stencil::offset_from_mean(mean, node, h)),
+        );
+        let mut momentum = vec![DVec2::ZERO; nodes[0] * nodes[1]];
+        scatter.add_into(&mut momentum, NodeRect::whole(nodes), |n, p| *n += p);
+        let total: DVec2 = momentum.iter().sum();
+        let expected: DVec2 = near.iter().map(|&x| field(x)).sum();
+        assert!((total - expected).length() < 1e-12, "{total} vs {expected}");
     }
 
     /// Scatter of the weights of scattered points must equal a plain

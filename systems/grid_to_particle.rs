@@ -6,7 +6,7 @@ use crate::components::{
 };
 use crate::math::{DMat2, DVec2, Real, local_damping, outer};
 use crate::resources::{Clock, Grid, PositionUpdate, Settings};
-use crate::shape_functions::{Stencil, StencilGrid};
+use crate::shape_functions::Stencil;
 use crate::transfer::{MIN_POINTS_PER_TASK, Scatter, ScatterOrder};
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
@@ -186,8 +186,7 @@ pub fn grid_to_particle(
             } = remap;
             let affine = affine.then(|| AffineMap {
                 gradient: affine_gradient,
-                position,
-                grid: grid.stencil_grid(),
+                cell: grid.cell_size,
             });
             map_to_nodes(mass, velocity, affine, layer, transfer, momentum, current);
             let remapped_velocity = &*current;
@@ -242,15 +241,13 @@ fn move_point(x: &mut DVec2, v: &mut DVec2, step: DVec2, (lo, hi): (DVec2, DVec2
 struct AffineMap<'a> {
     /// C_p of each point.
     gradient: &'a [DMat2],
-    /// x_p, where the stencils were computed.
-    position: &'a [DVec2],
-    /// Where the stencils' nodes are.
-    grid: StencilGrid,
+    /// The cell size (m).
+    cell: Real,
 }
 
 /// Maps point velocities back to the layer's active nodes:
 /// u_i = Σ_p S_ip m_p V_p / m_i, or with `affine`
-/// Σ_p S_ip m_p (V_p + C_p (x_i − x_p)) / m_i as P2G maps them (zero below
+/// Σ_p S_ip m_p (V_p + C_p (x_i − x̄_p)) / m_i as P2G maps them (zero below
 /// the layer's mass cutoff), constrained like the nodal velocities. Nodes
 /// outside the active ones keep earlier values: no stencil reaches them.
 fn map_to_nodes(
@@ -264,23 +261,13 @@ fn map_to_nodes(
 ) {
     let (active, window, nodes) = (layer.active(), layer.window(), layer.nodes());
     into.resize(nodes.len(), DVec2::ZERO);
-    if let Some(AffineMap {
-        gradient,
-        position,
-        grid,
-    }) = affine
-    {
-        let cell = 1.0 / grid.inv_cell_size;
+    if let Some(AffineMap { gradient, cell }) = affine {
         momentum.scatter(
             stencils,
             scatter_order,
-            |p| {
-                let base = stencils[p].base_offset(&grid, position[p]);
-                (mass[p], velocity[p], gradient[p], base)
-            },
-            |&(m, v, c, base), w, _, [a, b]| {
-                let offset = base + cell * DVec2::new(a as Real, b as Real);
-                (w * m) * (v + c * offset)
+            |p| (mass[p], velocity[p], gradient[p], stencils[p].mean_place()),
+            |&(m, v, c, mean), w, _, node| {
+                (w * m) * (v + c * Stencil::offset_from_mean(mean, node, cell))
             },
         );
     } else {

@@ -7,7 +7,7 @@ use crate::components::{
     TransferScratch,
 };
 use crate::contact::ForceApplication;
-use crate::math::{DVec2, Real};
+use crate::math::DVec2;
 use crate::resources::{
     Clock, ContactSettings, Diagnostics, Gravity, Grid, NumericalFailure, Settings, SharedLayers,
 };
@@ -94,12 +94,12 @@ pub fn particle_to_grid(
                 stencils,
                 order,
                 |p| {
-                    let base = stencils[p].base_offset(&stencil_grid, points.position[p]);
-                    let velocity = (points.velocity[p], points.affine_gradient[p], base);
+                    let mean = stencils[p].mean_place();
+                    let velocity = (points.velocity[p], points.affine_gradient[p], mean);
                     (points.mass[p], velocity, force_on(p))
                 },
-                |&(m, (v, c, base), f), w, _, [a, b]| {
-                    let offset = base + cell * DVec2::new(a as Real, b as Real);
+                |&(m, (v, c, mean), f), w, _, node| {
+                    let offset = Stencil::offset_from_mean(mean, node, cell);
                     MassMomentumForce {
                         mass: w * m,
                         momentum: (w * m) * (v + c * offset),

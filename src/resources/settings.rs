@@ -89,8 +89,10 @@ pub struct Settings {
     /// interpolated (Taylor particle-in-cell, Nakamura et al. 2023; with the
     /// quadratic B-spline it is APIC's affine velocity, Jiang et al. 2015),
     /// so the nodes reproduce an affine velocity field exactly, a body's
-    /// rotation included (where a point's support lies inside the grid: at
-    /// a wall its weights are renormalised). Without it a node on a body's
+    /// rotation included, where a point's support lies inside the grid. At
+    /// a wall, whose cut renormalises the weights, the offsets are taken
+    /// from the nodes' weighted mean x̄_p = Σ S_ip x_i instead of x_p, so
+    /// momentum is still conserved. Without it a node on a body's
     /// edge takes the velocity of its points' mass centre, up to half a
     /// cell inside the body, so a rotating body strains: at one point per
     /// cell a freely spinning block's spin goes into strain and back and

@@ -169,12 +169,23 @@ impl Stencil {
         })
     }
 
-    /// x_i − x_p from a point at `position` to the stencil's lower-left node
-    /// (grid node `base`); node (a, b) of the stencil is (a, b) h further.
+    /// The weights' mean of the stencil's node places, (Σ_a w_x,a a,
+    /// Σ_b w_y,b b) in cells from `base`: the point's own place where its
+    /// support lies inside the grid (the kernels reproduce linear fields),
+    /// the mean of the nodes it reaches where a wall cuts its support.
     #[inline(always)]
-    pub fn base_offset(&self, grid: &StencilGrid, position: DVec2) -> DVec2 {
-        let base = DVec2::new(Real::from(self.base[0]), Real::from(self.base[1]));
-        grid.origin + base / grid.inv_cell_size - position
+    pub fn mean_place(&self) -> DVec2 {
+        DVec2::new(self.wx[1] + 2.0 * self.wx[2], self.wy[1] + 2.0 * self.wy[2])
+    }
+
+    /// x_i − x̄_p (m) for stencil node `node` = (a, b), x̄_p = Σ_i S_ip x_i
+    /// the nodes' mean position (`mean` from [`Self::mean_place`], `cell`
+    /// the cell size): x_i − x_p where the support lies inside the grid.
+    /// The offsets' weighted sum is zero, so a momentum built on them (the
+    /// affine transfer) adds none, at walls too.
+    #[inline(always)]
+    pub fn offset_from_mean(mean: DVec2, node: [usize; 2], cell: Real) -> DVec2 {
+        cell * (DVec2::new(node[0] as Real, node[1] as Real) - mean)
     }
 
     /// Folds `f(acc, value, S_ip, G_ip)` over the nine stencil nodes of a
@@ -219,7 +230,7 @@ impl Stencil {
     /// row-major rectangle `values` of nodes whose lower-left node is grid
     /// node `origin` and whose rows are `row_len` long; (a, b) is the node's
     /// place in the stencil (grid node `base` + (a, b)), for quantities that
-    /// depend on where the node is (see [`Self::base_offset`]).
+    /// depend on where the node is (see [`Self::offset_from_mean`]).
     #[inline(always)]
     pub fn scatter<T>(
         &self,
