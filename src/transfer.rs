@@ -271,6 +271,25 @@ mod tests {
             DMat2::from_cols_array(&[0.5, 2.0, -1.5, 0.25]),
         );
         let field = |x: DVec2| v0 + a * x;
+        // Unit masses at `points` carrying the field affinely: each node's
+        // momentum in x and y, its mass in z.
+        let scatter_field = |points: &[DVec2], stencils: &[Stencil]| {
+            let mut order = ScatterOrder::default();
+            order.sort_by_row(stencils, NodeRect::whole(nodes));
+            let mut scatter = Scatter::<DVec3>::default();
+            scatter.scatter(
+                stencils,
+                &order,
+                |p| (field(points[p]), stencils[p].mean_place()),
+                |&(v, mean), w, _, node| {
+                    let offset = Stencil::offset_from_mean(mean, node, h);
+                    (w * (v + a * offset)).extend(w)
+                },
+            );
+            let mut sums = vec![DVec3::ZERO; nodes[0] * nodes[1]];
+            scatter.add_into(&mut sums, NodeRect::whole(nodes), |n, s| *n += s);
+            sums
+        };
         let positions: Vec<DVec2> = (0..300)
             .map(|k| {
                 let t = k as Real * 0.618_033_988_75;
@@ -286,21 +305,7 @@ mod tests {
                 .iter()
                 .map(|&x| kernel.stencil(x, DVec2::splat(h / 4.0), &grid).unwrap())
                 .collect();
-            let mut order = ScatterOrder::default();
-            order.sort_by_row(&stencils, NodeRect::whole(nodes));
-            // Momentum in x and y, mass in z.
-            let mut scatter = Scatter::<DVec3>::default();
-            scatter.scatter(
-                &stencils,
-                &order,
-                |p| (field(positions[p]), stencils[p].mean_place()),
-                |&(v, mean), w, _, node| {
-                    let offset = Stencil::offset_from_mean(mean, node, h);
-                    (w * (v + a * offset)).extend(w)
-                },
-            );
-            let mut sums = vec![DVec3::ZERO; nodes[0] * nodes[1]];
-            scatter.add_into(&mut sums, NodeRect::whole(nodes), |n, s| *n += s);
+            let sums = scatter_field(&positions, &stencils);
             let mut reached = 0;
             for (k, sum) in sums.iter().enumerate() {
                 if sum.z > 1e-6 {
@@ -339,18 +344,10 @@ mod tests {
             })
             .count();
         assert!(cut >= 5, "{cut} points cut by the wall");
-        let mut order = ScatterOrder::default();
-        order.sort_by_row(&stencils, NodeRect::whole(nodes));
-        let mut scatter = Scatter::<DVec2>::default();
-        scatter.scatter(
-            &stencils,
-            &order,
-            |p| (field(near[p]), stencils[p].mean_place()),
-            |&(v, mean), w, _, node| w * (v + a * Stencil::offset_from_mean(mean, node, h)),
-        );
-        let mut momentum = vec![DVec2::ZERO; nodes[0] * nodes[1]];
-        scatter.add_into(&mut momentum, NodeRect::whole(nodes), |n, p| *n += p);
-        let total: DVec2 = momentum.iter().sum();
+        let total: DVec2 = scatter_field(&near, &stencils)
+            .iter()
+            .map(|n| n.truncate())
+            .sum();
         let expected: DVec2 = near.iter().map(|&x| field(x)).sum();
         assert!((total - expected).length() < 1e-12, "{total} vs {expected}");
     }
