@@ -6,6 +6,7 @@
 mod common;
 
 use mpdem::contact::ContactLaw;
+use mpdem::materials::LinearElastic;
 use mpdem::math::DVec2;
 use mpdem::verify::elastic_block::ElasticBlock;
 use mpdem::verify::toppling::rocking_block;
@@ -49,8 +50,10 @@ fn the_finite_element_block_stiffened_follows_the_rigid_block() {
     let slope = 18.0_f64.to_radians();
     let stiff = ElasticBlock {
         size: DVec2::new(0.1, 0.4),
-        youngs_modulus: 1e10,
-        poisson_ratio: 0.22,
+        material: LinearElastic {
+            youngs_modulus: 1e10,
+            poisson_ratio: 0.22,
+        },
         density: 3000.0,
         gravity: 9.81 * DVec2::new(slope.sin(), -slope.cos()),
         point_spacing: 0.01,

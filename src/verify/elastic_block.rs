@@ -21,6 +21,7 @@
 //! per spacing the block bounces off the slope.
 
 use crate::contact::{ContactLaw, pair_force};
+use crate::materials::{ConstitutiveModel, LinearElastic};
 use crate::math::{DMat2, DVec2, Real, outer};
 
 /// The block, its material and its disks.
@@ -28,10 +29,8 @@ use crate::math::{DMat2, DVec2, Real, outer};
 pub struct ElasticBlock {
     /// Width and height (m); the block's lower-left corner is at the origin.
     pub size: DVec2,
-    /// Young's modulus (Pa).
-    pub youngs_modulus: Real,
-    /// Poisson's ratio.
-    pub poisson_ratio: Real,
+    /// Its moduli (the Saint Venant–Kirchhoff law takes λ and μ from them).
+    pub material: LinearElastic,
     /// Density (kg/m³).
     pub density: Real,
     /// Gravity in the slope's frame (m/s²).
@@ -150,19 +149,12 @@ impl Mesh {
             .zip(nodes)
             .fold(DMat2::ZERO, |f, (g, n)| f + outer(self.x[n], *g))
     }
-}
 
-/// Saint Venant–Kirchhoff in plane strain: S = λ tr(E) I + 2μ E.
-#[derive(Clone, Copy, Debug)]
-struct Lame {
-    lambda: Real,
-    mu: Real,
-}
-
-impl Mesh {
     /// Adds −∫ P ∇N_a dV of every element to `force` (2 × 2 Gauss points,
-    /// P = F S the first Piola–Kirchhoff stress).
-    fn add_internal_forces(&self, lame: Lame, force: &mut [DVec2]) {
+    /// P = F S the first Piola–Kirchhoff stress, S = λ tr(E) I + 2μ E in
+    /// plane strain, λ and μ those of `material`).
+    fn add_internal_forces(&self, material: &LinearElastic, force: &mut [DVec2]) {
+        let (lambda, mu) = (material.lame_lambda(), material.shear_modulus());
         let gauss = 1.0 / Real::sqrt(3.0);
         let weight = 0.25 * self.h * self.h;
         let points = CORNERS.map(|(a, b)| gradients(DVec2::new(a, b) * gauss, self.h));
@@ -174,8 +166,7 @@ impl Mesh {
                     .fold(DMat2::ZERO, |f, (&n, gn)| f + outer(self.x[n], *gn));
                 let green = 0.5 * (f.transpose() * f - DMat2::IDENTITY);
                 let trace = green.x_axis.x + green.y_axis.y;
-                let second =
-                    2.0 * lame.mu * green + DMat2::from_diagonal(DVec2::splat(lame.lambda * trace));
+                let second = 2.0 * mu * green + DMat2::from_diagonal(DVec2::splat(lambda * trace));
                 let first = f * second;
                 for (&n, gn) in nodes.iter().zip(g) {
                     force[n] -= weight * (first * *gn);
@@ -242,8 +233,7 @@ impl ElasticBlock {
     /// Euler is stable below both, and halving it moves the 18° scene's
     /// rotations by 3e-4° at most.
     fn time_step(&self) -> Real {
-        let nu = self.poisson_ratio;
-        let p_wave = self.youngs_modulus * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+        let p_wave = self.material.p_wave_modulus();
         let h = self.point_spacing;
         let wave = h / (p_wave / self.density).sqrt();
         let node = 0.25 * self.density * h * h;
@@ -260,11 +250,6 @@ impl ElasticBlock {
         let mut disks = Disks::new(&mesh, self.size.x, self.point_spacing);
         let (top, bottom) = (mesh.place(top), mesh.place(bottom));
         let axis0 = mesh.at(&mesh.x, top) - mesh.at(&mesh.x, bottom);
-        let nu = self.poisson_ratio;
-        let lame = Lame {
-            lambda: self.youngs_modulus * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)),
-            mu: self.youngs_modulus / (2.0 * (1.0 + nu)),
-        };
         let dt = self.time_step();
         let mut force = vec![DVec2::ZERO; mesh.x.len()];
         let (mut t, mut out) = (0.0, Vec::with_capacity(times.len()));
@@ -273,7 +258,7 @@ impl ElasticBlock {
                 for (f, m) in force.iter_mut().zip(&mesh.mass) {
                     *f = *m * self.gravity;
                 }
-                mesh.add_internal_forces(lame, &mut force);
+                mesh.add_internal_forces(&self.material, &mut force);
                 disks.add_forces(&mesh, &self.contact, dt, &mut force);
                 let Mesh { x, v, mass, .. } = &mut mesh;
                 for ((x, v), (f, m)) in x.iter_mut().zip(v.iter_mut()).zip(force.iter().zip(&*mass))

@@ -20,13 +20,6 @@ use crate::math::{DVec2, Real};
 use crate::resources::Penetration;
 use crate::scene::Scene;
 
-/// Width and height of the scenes' block (m).
-const BLOCK: (Real, Real) = (0.1, 0.4);
-
-/// Radius of the scenes' disks (m): 2 × 2 points per 0.02 m cell, spacing
-/// 0.01 m, disks of half the spacing.
-const DISK_RADIUS: Real = 0.005;
-
 /// Times at which the rotation is compared (s).
 const TIMES: [Real; 2] = [0.3, 0.4];
 
@@ -135,8 +128,7 @@ pub fn elastic_reference(scene: &Scene) -> Result<ElasticBlock, VerifyError> {
     let (min, max) = body.shape.bounds();
     Ok(ElasticBlock {
         size: max - min,
-        youngs_modulus: elastic.youngs_modulus,
-        poisson_ratio: elastic.poisson_ratio,
+        material: elastic,
         density: material.density,
         gravity: scene.gravity,
         point_spacing: scene.grid.cell_size / Real::from(body.points_per_cell),
@@ -144,10 +136,14 @@ pub fn elastic_reference(scene: &Scene) -> Result<ElasticBlock, VerifyError> {
     })
 }
 
-/// ψ (rad) at `TIMES` of the finite-element block of `scene`, measured
-/// between the material points that the simulation's probes follow.
-fn elastic_rotation(scene: &Scene, sim: &Simulation) -> Result<Vec<Real>, VerifyError> {
-    let block = elastic_reference(scene)?;
+/// ψ (rad) at `TIMES` of `block`, the finite-element block of `scene`,
+/// measured between the material points that the simulation's probes
+/// follow.
+fn elastic_rotation(
+    block: &ElasticBlock,
+    scene: &Scene,
+    sim: &Simulation,
+) -> Result<Vec<Real>, VerifyError> {
     let (corner, _) = first(&scene.bodies, "bodies")?.shape.bounds();
     let start = |probe: &str| -> Result<DVec2, VerifyError> {
         Ok(first(&probe_samples(sim, probe)?, "probe samples")?.position - corner)
@@ -163,10 +159,12 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
         scene.time.end = TIMES[TIMES.len() - 1];
         let sim = ctx.run(&format!("toppling_{slope}"), &scene)?;
         let psi = simulated_rotation(&sim, &TIMES)?;
-        let elastic = elastic_rotation(&scene, &sim)?;
-        let (w, h) = BLOCK;
-        let rounded = rocking_block(w, h, DISK_RADIUS, slope as Real, &TIMES);
-        let sharp = rocking_block(w, h, 0.0, slope as Real, &TIMES);
+        let block = elastic_reference(&scene)?;
+        let elastic = elastic_rotation(&block, &scene, &sim)?;
+        // The disks round the block's corners to their radius.
+        let (size, radius) = (block.size, 0.5 * block.point_spacing);
+        let rounded = rocking_block(size.x, size.y, radius, slope as Real, &TIMES);
+        let sharp = rocking_block(size.x, size.y, 0.0, slope as Real, &TIMES);
         for k in 0..TIMES.len() {
             let error = psi[k] / elastic[k] - 1.0;
             checks.push(Check::judged(
@@ -181,7 +179,7 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
             ));
             for (what, reference) in [
                 (
-                    format!("the rigid block rounded to r = {DISK_RADIUS} m"),
+                    format!("the rigid block rounded to r = {radius} m"),
                     rounded[k],
                 ),
                 ("the sharp-corner pendulum".to_string(), sharp[k]),
