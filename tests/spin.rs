@@ -7,6 +7,7 @@
 mod common;
 
 use mpdem::prelude::*;
+use mpdem::verify::mass_weighted_mean;
 use std::path::Path;
 
 /// Angular velocity of the spin (rad/s): a whole turn in 0.63 s.
@@ -37,13 +38,8 @@ fn spinning_block(affine_transfer: bool) -> Scene {
 /// energy (J/m) and orientation (rad in (−π, π]: the mass-weighted best
 /// fit of the points' turn about the centre of mass since the start).
 fn spin_of(points: &MaterialPoints) -> (Real, Real, Real) {
-    let (com, _) = mpdem::verify::centre_of_mass(points);
-    let start = points
-        .initial_position
-        .iter()
-        .zip(&points.mass)
-        .fold(DVec2::ZERO, |a, (x, m)| a + *x * *m)
-        / points.total_mass();
+    let com = mass_weighted_mean(points, &points.position);
+    let start = mass_weighted_mean(points, &points.initial_position);
     let (mut momentum, mut kinetic, mut cross, mut dot) = (0.0, 0.0, 0.0, 0.0);
     for p in 0..points.len() {
         let (m, v) = (points.mass[p], points.velocity[p]);
