@@ -252,7 +252,7 @@ mod tests {
 
     /// The node places passed to `per_node` locate the nodes: points
     /// carrying an affine velocity field v(x) = v0 + A x as V_p = v(x_p)
-    /// and C_p = A, scattered as S_ip m_p (V_p + C_p (x_i − x_p)), give
+    /// and C_p = A, scattered as S_ip m_p (V_p + C_p (x_i − x̄_p)), give
     /// every node v(x_i) exactly (to round-off), for every kernel, even
     /// where few points reach a node; and where a wall cuts the supports,
     /// the offsets from the nodes' mean keep the total momentum Σ m_p V_p.

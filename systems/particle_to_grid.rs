@@ -25,7 +25,7 @@ type StepInputs<'w> = (
 
 /// Computes every point's stencil at x^n and the step's scatter order,
 /// scatters S_ip m_p, S_ip m_p V_p (with `Settings::affine_transfer`,
-/// S_ip m_p (V_p + C_p (x_i − x_p))) and
+/// S_ip m_p (V_p + C_p (x_i − x̄_p)), x̄_p = Σ_i S_ip x_i, x_p away from walls) and
 /// S_ip (m_p (g + b(t)) + f_p,ext [+ f_p,contact in `BodyForce` mode]) to
 /// the body's layer (b the body's own `BodyAcceleration`, if any, at the
 /// step's start time), makes the layers of a contact group their sum

@@ -12,7 +12,7 @@ use std::ops::AddAssign;
 pub struct MassMomentumForce {
     /// S_ip m_p.
     pub mass: Real,
-    /// S_ip m_p V_p (S_ip m_p (V_p + C_p (x_i − x_p)) with
+    /// S_ip m_p V_p (S_ip m_p (V_p + C_p (x_i − x̄_p)) with
     /// `Settings::affine_transfer`).
     pub momentum: DVec2,
     /// S_ip (m_p b + f_p,ext).

@@ -39,7 +39,7 @@ pub enum PositionUpdate {
     /// `Remapped`).
     Forward,
     /// x += ṽ Δt with ṽ = Σ S_ip ṽ_i, where ṽ_i = Σ_p S_ip m_p V_p^{n+1} / m_i
-    /// (with `affine_transfer`, V_p^{n+1} + C_p (x_i − x_p); constrained)
+    /// (with `affine_transfer`, V_p^{n+1} + C_p (x_i − x̄_p); constrained)
     /// maps the points' new velocities back to the nodes as P2G does, with
     /// the stencils at x^n: the field from which the next step's USF strain
     /// rate is computed, there with the stencils at x^{n+1}. The material
