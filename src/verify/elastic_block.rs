@@ -20,6 +20,7 @@
 //! node, whose small mass chatters on the stiff springs: at two elements
 //! per spacing the block bounces off the slope.
 
+use super::quad4::{gauss_points, local_gradients, shape};
 use crate::contact::{ContactLaw, pair_force};
 use crate::materials::{ConstitutiveModel, LinearElastic};
 use crate::math::{DMat2, DVec2, Real, outer};
@@ -40,9 +41,6 @@ pub struct ElasticBlock {
     /// The disks' contact law with the slope.
     pub contact: ContactLaw,
 }
-
-/// Local coordinates of the four nodes of an element, counter-clockwise.
-const CORNERS: [(Real, Real); 4] = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
 
 /// A material point of the mesh: its element and local coordinates in it.
 #[derive(Clone, Copy, Debug)]
@@ -67,15 +65,10 @@ struct Mesh {
     v: Vec<DVec2>,
 }
 
-/// Shape function values at local coordinates `s`.
-fn shape(s: DVec2) -> [Real; 4] {
-    CORNERS.map(|(a, b)| 0.25 * (1.0 + a * s.x) * (1.0 + b * s.y))
-}
-
 /// Shape function gradients with respect to the reference position, for
 /// square elements of size `h`, at local coordinates `s`.
 fn gradients(s: DVec2, h: Real) -> [DVec2; 4] {
-    CORNERS.map(|(a, b)| DVec2::new(a * (1.0 + b * s.y), b * (1.0 + a * s.x)) * (0.5 / h))
+    local_gradients(s).map(|g| g * (2.0 / h))
 }
 
 impl Mesh {
@@ -155,9 +148,8 @@ impl Mesh {
     /// plane strain, λ and μ those of `material`).
     fn add_internal_forces(&self, material: &LinearElastic, force: &mut [DVec2]) {
         let (lambda, mu) = (material.lame_lambda(), material.shear_modulus());
-        let gauss = 1.0 / Real::sqrt(3.0);
         let weight = 0.25 * self.h * self.h;
-        let points = CORNERS.map(|(a, b)| gradients(DVec2::new(a, b) * gauss, self.h));
+        let points = gauss_points().map(|s| gradients(s, self.h));
         for nodes in &self.connectivity {
             for g in &points {
                 let f = nodes

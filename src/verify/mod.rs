@@ -13,9 +13,11 @@
 pub mod collapse;
 pub mod dam_break;
 pub mod elastic_block;
+pub mod elastic_disk;
 pub mod geostatic;
 pub mod hertz;
 pub mod pile;
+pub mod quad4;
 pub mod rings;
 pub mod sliding;
 pub mod toppling;
