@@ -5,10 +5,11 @@ use crate::components::{
     MaterialPoints, PartReactions, PointEnergies, Pose, Reaction, RigidVelocity,
     sort_into_scene_order,
 };
+use crate::math::DVec2;
 use crate::resources::{
     BlockLog, BlockPartSample, BlockSample, BodyContacts, BodyPairLog, BodyPairSample, Clock,
-    ContactWork, Diagnostics, EnergyLog, EnergySample, Gravity, NumericalFailure, PairTally,
-    Probes,
+    ContactWork, Diagnostics, EnergyLog, EnergySample, Gravity, MAX_CONTACT_BODIES,
+    NumericalFailure, PairTally, Probes,
 };
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -149,14 +150,17 @@ pub fn record_probes_and_energy(
 }
 
 /// Records the contacts of every pair of bodies with a law (resultant,
-/// count, zone half-width) with the probes' period, unless the step failed.
+/// count, zone half-width, now and in the undeformed bodies) with the
+/// probes' period, unless the step failed.
 ///
-/// Reads: `Clock`, `Diagnostics`, `Probes::every`, `BodyContacts`. Writes: `BodyPairLog`.
+/// Reads: `Clock`, `Diagnostics`, `Probes::every`, `BodyContacts`,
+/// `BodyIndex`, `MaterialPoints::initial_position`. Writes: `BodyPairLog`.
 pub fn record_body_pairs(
     clock: Res<Clock>,
     diagnostics: Res<Diagnostics>,
     probes: Res<Probes>,
     contacts: Res<BodyContacts>,
+    bodies: Query<(&BodyIndex, &MaterialPoints)>,
     mut log: ResMut<BodyPairLog>,
     mut tallies: Local<Vec<PairTally>>,
 ) {
@@ -164,7 +168,24 @@ pub fn record_body_pairs(
         return;
     }
     let time = clock.time;
-    contacts.summaries(&mut tallies);
+    let mut initial: [Option<&[DVec2]>; MAX_CONTACT_BODIES] = [None; MAX_CONTACT_BODIES];
+    for (index, points) in bodies.iter() {
+        if let Some(slot) = initial.get_mut(index.0 as usize) {
+            *slot = Some(&points.initial_position);
+        }
+    }
+    let place = |body: u32, point: u32| {
+        initial[body as usize].and_then(|positions| positions.get(point as usize).copied())
+    };
+    // The middle of the pair's initial positions; the contact point for a
+    // point whose body is gone.
+    contacts.summaries(
+        |c| match (place(c.a, c.p), place(c.b, c.q)) {
+            (Some(p), Some(q)) => 0.5 * (p + q),
+            _ => c.at,
+        },
+        &mut tallies,
+    );
     log.samples.extend(
         contacts
             .laws

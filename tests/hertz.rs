@@ -5,7 +5,7 @@
 
 mod common;
 
-use mpdem::verify::hertz::{LoadingCurve, Resolution};
+use mpdem::verify::hertz::{LoadingCurve, Resolution, Zone};
 
 #[test]
 fn coarse_disks_carry_the_applied_load_along_the_line_of_centres() {
@@ -18,7 +18,8 @@ fn coarse_disks_carry_the_applied_load_along_the_line_of_centres() {
     let base = common::load_scene("hertz_disks.ron");
     let scene = resolution.scene(&base).unwrap_or_else(|e| panic!("{e}"));
     let mut sim = common::run_scene(&scene);
-    let curve = LoadingCurve::of(&mut sim, &scene).unwrap_or_else(|e| panic!("{e}"));
+    let curve =
+        LoadingCurve::of(&mut sim, &scene, Zone::Undeformed).unwrap_or_else(|e| panic!("{e}"));
     let applied = curve.applied;
     let (error, count) = curve.hertz_error();
     println!(

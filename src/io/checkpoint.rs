@@ -47,7 +47,7 @@ const MAGIC: &[u8; 8] = b"MPDEMCK\0";
 
 /// The layout of the stored state; a checkpoint of another layout is
 /// refused rather than misread.
-const FORMAT: u32 = 7;
+const FORMAT: u32 = 8;
 
 /// Why a checkpoint could not be written or resumed.
 #[derive(Debug, thiserror::Error)]

@@ -60,22 +60,22 @@ pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
 
 /// Writes `body_contacts.csv`: one row per pair of bodies with a law and
 /// sample time, columns time, body_a, body_b, force_x, force_y (on body_a,
-/// N/m), contacts (point pairs), half_width and pressure_half_width (m, see
-/// [`crate::resources::PairSummary`]). `names` are the bodies in scene order.
+/// N/m), contacts (point pairs), half_width, pressure_half_width and
+/// initial_pressure_half_width (m, see [`crate::resources::PairSummary`]). `names` are the bodies in scene order.
 /// `time` is the end of the step whose contacts (found from the positions
 /// at its start) are summed, like the other records.
 pub fn write_body_pairs(path: &Path, log: &BodyPairLog, names: &[String]) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     writeln!(
         out,
-        "time,body_a,body_b,force_x,force_y,contacts,half_width,pressure_half_width"
+        "time,body_a,body_b,force_x,force_y,contacts,half_width,pressure_half_width,initial_pressure_half_width"
     )?;
     for s in &log.samples {
         let name = |i: u32| names.get(i as usize).map_or("?", String::as_str);
         let p = &s.summary;
         writeln!(
             out,
-            "{:e},{},{},{:e},{:e},{},{:e},{:e}",
+            "{:e},{},{},{:e},{:e},{},{:e},{:e},{:e}",
             s.time,
             name(s.a),
             name(s.b),
@@ -83,7 +83,8 @@ pub fn write_body_pairs(path: &Path, log: &BodyPairLog, names: &[String]) -> std
             p.force.y,
             p.contacts,
             p.half_width,
-            p.pressure_half_width
+            p.pressure_half_width,
+            p.initial_pressure_half_width
         )?;
     }
     out.flush()

@@ -5,7 +5,7 @@
 //! elements ([`super::elastic_disk`]), which show how far the continuum
 //! itself is from Hertz at the window's contact sizes.
 
-use super::elastic_disk::ElasticDisk;
+use super::elastic_disk::{ElasticDisk, WallSample};
 use super::{Check, Context, VerifyError, body, first, percent};
 use crate::Simulation;
 use crate::io::plot::{Series, SeriesStyle, plot_series};
@@ -119,6 +119,37 @@ impl Resolution {
     }
 }
 
+/// Where a run's contact half-width is measured (both from the spread of
+/// the contact forces).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Zone {
+    /// Over the contacts' places in the undeformed disks: the half-width of
+    /// small-strain theory, which Hertz's law relates to F.
+    Undeformed,
+    /// Over the contacts' current positions. Under load the surface slides
+    /// towards the contact's centre by a fraction (1 − 2ν) of order a/R, so
+    /// this zone is narrower: 9% at a = 0.25 R for these disks.
+    Current,
+}
+
+/// A run's loading curve with the half-width measured both ways.
+pub struct Loading {
+    /// a over the contacts' places in the undeformed disks.
+    pub undeformed: LoadingCurve,
+    /// a over their current positions.
+    pub current: LoadingCurve,
+}
+
+impl Loading {
+    /// The curve with a measured in `zone`.
+    pub fn in_zone(&self, zone: Zone) -> &LoadingCurve {
+        match zone {
+            Zone::Undeformed => &self.undeformed,
+            Zone::Current => &self.current,
+        }
+    }
+}
+
 /// The recorded (a, F) pairs of a run, a from the spread of the contact
 /// forces, the last sample's force, and the body force applied to the left
 /// disk at the end of the ramp.
@@ -132,8 +163,9 @@ pub struct LoadingCurve {
 }
 
 impl LoadingCurve {
-    /// Reads the curve of a run of `scene` that has reached its end.
-    pub fn of(sim: &mut Simulation, scene: &Scene) -> Result<Self, VerifyError> {
+    /// Reads the curve of a run of `scene` that has reached its end, a
+    /// measured in `zone`.
+    pub fn of(sim: &mut Simulation, scene: &Scene, zone: Zone) -> Result<Self, VerifyError> {
         let disk_mass: Real = body(sim, "left")?.mass.iter().sum();
         let acceleration = scene
             .bodies
@@ -145,7 +177,13 @@ impl LoadingCurve {
             .samples
             .iter()
             .filter(|s| s.summary.contacts > 0)
-            .map(|s| (s.summary.pressure_half_width, s.summary.force.length()))
+            .map(|s| {
+                let a = match zone {
+                    Zone::Undeformed => s.summary.initial_pressure_half_width,
+                    Zone::Current => s.summary.pressure_half_width,
+                };
+                (a, s.summary.force.length())
+            })
             .collect();
         let final_force = log
             .samples
@@ -189,12 +227,16 @@ impl LoadingCurve {
         sums.map(|(sum, count)| (sum / count.max(1) as Real, count))
     }
 
-    /// The half-width at load `force`, interpolated along the curve (a
-    /// grows with the load; F does not always grow with a).
+    /// The half-width at load `force`, interpolated between the first
+    /// samples that bracket it (the load is ramped, so F grows with time
+    /// but for small dips, and a does not always grow with F).
     fn width_at(&self, force: Real) -> Real {
         let s = &self.samples;
         let k = s.partition_point(|p| p.1 < force).clamp(1, s.len() - 1);
         let ((a0, f0), (a1, f1)) = (s[k - 1], s[k]);
+        if f1 == f0 {
+            return a0;
+        }
         a0 + (a1 - a0) * (force - f0) / (f1 - f0)
     }
 }
@@ -226,10 +268,13 @@ pub fn load_to_the_end(
     ctx: &Context,
     base: &Scene,
     resolution: Resolution,
-) -> Result<LoadingCurve, VerifyError> {
+) -> Result<Loading, VerifyError> {
     let scene = resolution.scene(base)?;
     let mut sim = ctx.run(&format!("hertz_disks, {}", resolution.label()), &scene)?;
-    LoadingCurve::of(&mut sim, &scene)
+    Ok(Loading {
+        undeformed: LoadingCurve::of(&mut sim, &scene, Zone::Undeformed)?,
+        current: LoadingCurve::of(&mut sim, &scene, Zone::Current)?,
+    })
 }
 
 /// The issue's four resolutions (cell R/20 and R/40; 1 and 2 × 2 points per
@@ -291,7 +336,7 @@ pub fn finite_element_curve(
     base: &Scene,
     divisions: usize,
     small_strain: bool,
-) -> Result<LoadingCurve, VerifyError> {
+) -> Result<Loading, VerifyError> {
     let material = first(&base.materials, "materials")?;
     let load = first(&base.bodies, "bodies")?
         .acceleration
@@ -308,12 +353,16 @@ pub fn finite_element_curve(
         small_strain,
     };
     let samples = disk.loading_curve(base.output.probe_interval_or_default(base.time.end));
-    let last = samples.last().map_or(0.0, |sample| sample.1);
+    let last = samples.last().map_or(0.0, |sample| sample.force);
     let mass = material.density * std::f64::consts::PI * RADIUS * RADIUS;
-    Ok(LoadingCurve {
-        samples,
+    let curve = |half_width: fn(&WallSample) -> Real| LoadingCurve {
+        samples: samples.iter().map(|s| (half_width(s), s.force)).collect(),
         final_force: DVec2::new(-last, 0.0),
         applied: DVec2::new(mass * load.value.length(), 0.0),
+    };
+    Ok(Loading {
+        undeformed: curve(|s| s.initial_half_width),
+        current: curve(|s| s.half_width),
     })
 }
 
@@ -351,12 +400,23 @@ fn falls_with_resolution(errors: &[Real]) -> (bool, String) {
     )
 }
 
-/// The seven runs of [`RUNS`], their errors against Hertz, the same disks by
-/// finite elements and every run's difference from them, and F(a) plotted
-/// to `OUT/hertz_disks/f_of_a.png`.
+/// Each run's value of `values` by label, "R/20, 1 pt/cell 22.7%; …".
+fn by_run(values: &[Real]) -> String {
+    RUNS.iter()
+        .zip(values)
+        .map(|(run, v)| format!("{} {:.1}%", run.label(), 100.0 * v))
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// The seven runs of [`RUNS`] and the same disks by finite elements, a
+/// measured in the undeformed disks (the half-width Hertz's small-strain
+/// law speaks of; the issue's targets are judged on it) and over the
+/// current positions (reported), and F(a) plotted to
+/// `OUT/hertz_disks/f_of_a.png`.
 pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
     let base = ctx.scene("hertz_disks.ron")?;
-    let curves = RUNS
+    let runs = RUNS
         .iter()
         .map(|r| load_to_the_end(ctx, &base, *r))
         .collect::<Result<Vec<_>, _>>()?;
@@ -365,14 +425,16 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
     let small_strain = finite_element_curve(&base, REFERENCE_DIVISIONS / 2, true)?;
     let neo_hookean_reference =
         finite_element_curve(&RUNS[NEO_HOOKEAN].scene(&base)?, REFERENCE_DIVISIONS, false)?;
+    let undeformed: Vec<&LoadingCurve> = runs.iter().map(|r| &r.undeformed).collect();
     plot(
         &ctx.out_dir("hertz_disks")?.join("f_of_a.png"),
-        &curves,
-        &reference,
+        &undeformed,
+        &reference.undeformed,
     )?;
-    let errors: Vec<(Real, usize)> = curves.iter().map(LoadingCurve::hertz_error).collect();
+    let errors: Vec<(Real, usize)> = undeformed.iter().map(|c| c.hertz_error()).collect();
     let mut checks = Vec::new();
-    for (k, ((run, (error, count)), curve)) in RUNS.iter().zip(&errors).zip(&curves).enumerate() {
+    for (k, ((run, (error, count)), curve)) in RUNS.iter().zip(&errors).zip(&undeformed).enumerate()
+    {
         let quantity = format!("{}: mean |F/F_Hertz(a) − 1|, a 0.2–0.3 R", run.label());
         let enough = *count >= MIN_SAMPLES;
         checks.push(if k == FINEST {
@@ -402,80 +464,117 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
         "falls at each refinement",
         falls,
     ));
-    let turned = difference_at_equal_force(&curves[TURNED], &curves[FINEST]);
+    let turned = difference_at_equal_force(undeformed[TURNED], undeformed[FINEST]);
     checks.push(Check::judged(
         "turned 45° against unturned at the finest resolution, F at equal a",
         format!("{:.1}%", 100.0 * turned),
         "within 5%",
         turned < 0.05,
     ));
-    // The same disks of the same law by finite elements: how far the
-    // continuum itself departs from Hertz at the window's strains, and how
-    // far each run is from the continuum.
-    checks.push(Check::reported(
-        format!(
-            "the same disks by finite elements (R/{REFERENCE_DIVISIONS} at the pole, the scene's law): \
-             mean |F/F_Hertz(a) − 1|, a 0.2–0.3 R"
+    // The same runs with a over the points' current positions.
+    for (run, loading) in RUNS.iter().zip(&runs) {
+        checks.push(Check::reported(
+            format!(
+                "{}, a over the current positions: mean |F/F_Hertz(a) − 1|, a 0.2–0.3 R",
+                run.label()
+            ),
+            describe(&loading.current),
+            "Hertz's a is small-strain theory's, in the undeformed disks",
+        ));
+    }
+    // The same disks by finite elements: the continuum's own departure from
+    // Hertz, and each run's from the continuum of its law.
+    let fe = |divisions: usize, what: &str| {
+        format!("the same disks by finite elements, {what} (R/{divisions} at the pole)")
+    };
+    for (quantity, curve, compared) in [
+        (
+            fe(
+                REFERENCE_DIVISIONS,
+                "the scene's law, a in the undeformed disks",
+            ),
+            &reference.undeformed,
+            "Hertz: small strain; the window's strains reach 0.15",
         ),
-        describe(&reference),
-        "Hertz: small strain, half-space; the window reaches strains of 0.15 and a/R 0.3",
-    ));
-    checks.push(Check::reported(
-        format!(
-            "the same disks, Neo-Hookean, by finite elements (R/{REFERENCE_DIVISIONS} at the pole): \
-             mean |F/F_Hertz(a) − 1|, a 0.2–0.3 R"
+        (
+            fe(
+                REFERENCE_DIVISIONS,
+                "the scene's law, a over the current positions",
+            ),
+            &reference.current,
+            "the current zone is narrower, by (1 − 2ν) O(a/R)",
         ),
-        describe(&neo_hookean_reference),
-        "as the scene's law: the two laws part at finite strain",
-    ));
-    checks.push(Check::reported(
-        format!(
-            "the same disks by finite elements in small-strain theory (R/{} at the pole): \
-             mean |F/F_Hertz(a) − 1|, a 0.2–0.3 R",
-            REFERENCE_DIVISIONS / 2
+        (
+            fe(
+                REFERENCE_DIVISIONS,
+                "Neo-Hookean, a in the undeformed disks",
+            ),
+            &neo_hookean_reference.undeformed,
+            "the two laws part at finite strain",
         ),
-        describe(&small_strain),
-        "Hertz's half-space theory leaves out the surface's tangential displacement, ∝ (1 − 2ν) a/R",
-    ));
+        (
+            fe(
+                REFERENCE_DIVISIONS / 2,
+                "small strain, a in the undeformed disks",
+            ),
+            &small_strain.undeformed,
+            "Hertz's own theory, up to its O(a²/R²) geometry",
+        ),
+        (
+            fe(
+                REFERENCE_DIVISIONS / 2,
+                "small strain, a over the current positions",
+            ),
+            &small_strain.current,
+            "the current zone is narrower, by (1 − 2ν) O(a/R)",
+        ),
+    ] {
+        checks.push(Check::reported(
+            format!("{quantity}: mean |F/F_Hertz(a) − 1|, a 0.2–0.3 R"),
+            describe(curve),
+            compared,
+        ));
+    }
     checks.push(Check::reported(
         format!(
-            "finite elements R/{} against R/{REFERENCE_DIVISIONS}, F at equal a, a 0.2–0.3 R",
+            "finite elements R/{} against R/{REFERENCE_DIVISIONS}, F at equal a in the undeformed disks, a 0.2–0.3 R",
             REFERENCE_DIVISIONS / 2
         ),
         format!(
             "{:.1}%",
-            100.0 * difference_at_equal_force(&coarser_reference, &reference)
+            100.0 * difference_at_equal_force(&coarser_reference.undeformed, &reference.undeformed)
         ),
-        "the reference's discretisation error",
+        "how far the reference is from converged (R/80 is nearer than this)",
     ));
-    let against: Vec<Real> = RUNS
-        .iter()
-        .zip(&curves)
-        .map(|(run, curve)| {
-            let of_its_law = if run.neo_hookean {
-                &neo_hookean_reference
-            } else {
-                &reference
-            };
-            difference_at_equal_force(curve, of_its_law)
-        })
-        .collect();
-    for (run, difference) in RUNS.iter().zip(&against) {
+    for (zone, name) in [
+        (Zone::Undeformed, "in the undeformed disks"),
+        (Zone::Current, "over the current positions"),
+    ] {
+        let against: Vec<Real> = RUNS
+            .iter()
+            .zip(&runs)
+            .map(|(run, loading)| {
+                let of_its_law = if run.neo_hookean {
+                    &neo_hookean_reference
+                } else {
+                    &reference
+                };
+                difference_at_equal_force(loading.in_zone(zone), of_its_law.in_zone(zone))
+            })
+            .collect();
+        let (falls, trend) = falls_with_resolution(&against);
         checks.push(Check::reported(
             format!(
-                "{}: against the finite elements of its law, F at equal a, a 0.2–0.3 R",
-                run.label()
+                "each run against the finite elements of its law, F at equal a {name}, a 0.2–0.3 R"
             ),
-            format!("{:.1}%", 100.0 * difference),
+            format!(
+                "{}; the four resolutions {trend}: {}",
+                by_run(&against),
+                if falls { "falls" } else { "does not fall" }
+            ),
             "the continuum of the same law",
         ));
     }
-    let (falls, trend) = falls_with_resolution(&against);
-    checks.push(Check::reported(
-        "against the finite elements, the difference falls with resolution (same runs)",
-        format!("{trend}: {}", if falls { "falls" } else { "does not fall" }),
-        "not the issue's target, which is Hertz",
-    ));
     Ok(checks)
 }
 
@@ -483,11 +582,12 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
 /// `reference` and the Hertz law.
 pub fn plot(
     path: &std::path::Path,
-    curves: &[LoadingCurve],
+    curves: &[&LoadingCurve],
     reference: &LoadingCurve,
 ) -> Result<(), VerifyError> {
     let scaled: Vec<Vec<(Real, Real)>> = curves
         .iter()
+        .copied()
         .chain(std::iter::once(reference))
         .map(|c| c.samples.iter().map(|&(a, f)| (a / RADIUS, f)).collect())
         .collect();
