@@ -128,7 +128,7 @@ pub struct PairSummary {
     /// small-strain theory (Hertz) measures it, which does not tell the
     /// configurations apart. Under load a contact's surface slides towards
     /// its centre by a fraction (1 − 2ν) of order a/R, so the current zone
-    /// is narrower than this one (9% for the Hertz disks at a = 0.25 R).
+    /// is narrower than this one (8% for the Hertz disks at a = 0.2–0.3 R).
     pub initial_pressure_half_width: Real,
 }
 

@@ -130,7 +130,7 @@ pub enum Zone {
     Undeformed,
     /// Over the contacts' current positions. Under load the surface slides
     /// towards the contact's centre by a fraction (1 − 2ν) of order a/R, so
-    /// this zone is narrower: 9% at a = 0.25 R for these disks.
+    /// this zone is narrower: 8% at a = 0.2–0.3 R for these disks.
     Current,
 }
 
