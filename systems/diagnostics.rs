@@ -177,13 +177,10 @@ pub fn record_body_pairs(
     let place = |body: u32, point: u32| {
         initial[body as usize].and_then(|positions| positions.get(point as usize).copied())
     };
-    // The middle of the pair's initial positions; the contact point for a
-    // point whose body is gone.
+    // The middle of the pair's initial positions; none for a point whose
+    // body is gone.
     contacts.summaries(
-        |c| match (place(c.a, c.p), place(c.b, c.q)) {
-            (Some(p), Some(q)) => 0.5 * (p + q),
-            _ => c.at,
-        },
+        |c| Some(0.5 * (place(c.a, c.p)? + place(c.b, c.q)?)),
         &mut tallies,
     );
     log.samples.extend(

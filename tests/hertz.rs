@@ -20,6 +20,8 @@ fn coarse_disks_carry_the_applied_load_along_the_line_of_centres() {
     let mut sim = common::run_scene(&scene);
     let curve =
         LoadingCurve::of(&mut sim, &scene, Zone::Undeformed).unwrap_or_else(|e| panic!("{e}"));
+    let current =
+        LoadingCurve::of(&mut sim, &scene, Zone::Current).unwrap_or_else(|e| panic!("{e}"));
     let applied = curve.applied;
     let (error, count) = curve.hertz_error();
     println!(
@@ -46,6 +48,16 @@ fn coarse_disks_carry_the_applied_load_along_the_line_of_centres() {
         curve.final_force.y
     );
     assert!(curve.final_force.y.abs() < 0.02 * curve.final_force.x.abs());
+    // The zone in the undeformed disks is wider than over the current
+    // positions: under load the surface slides towards the contact's
+    // centre, by 7.5–9% at the end's a ≈ 0.3 R (the finite-element disks,
+    // small strain and the scene's law). At this resolution the ratio is
+    // 1.082; 1.02–1.2 fails a summary that takes the current positions or
+    // pairs the wrong points.
+    let last = |c: &LoadingCurve| c.samples.last().map_or(0.0, |s| s.0);
+    let ratio = last(&curve) / last(&current);
+    println!("half-width, undeformed over current, at the end: {ratio:.4}");
+    assert!((1.02..1.2).contains(&ratio), "{ratio}");
 }
 
 #[test]

@@ -61,7 +61,8 @@ pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
 /// Writes `body_contacts.csv`: one row per pair of bodies with a law and
 /// sample time, columns time, body_a, body_b, force_x, force_y (on body_a,
 /// N/m), contacts (point pairs), half_width, pressure_half_width and
-/// initial_pressure_half_width (m, see [`crate::resources::PairSummary`]). `names` are the bodies in scene order.
+/// initial_pressure_half_width (m, see [`crate::resources::PairSummary`]).
+/// `names` are the bodies in scene order.
 /// `time` is the end of the step whose contacts (found from the positions
 /// at its start) are summed, like the other records.
 pub fn write_body_pairs(path: &Path, log: &BodyPairLog, names: &[String]) -> std::io::Result<()> {
