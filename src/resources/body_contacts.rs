@@ -187,10 +187,9 @@ impl BodyContacts {
     /// The contacts of every law's pair of bodies this step, summed up:
     /// `tallies[k].summary()` for `laws[k]`, `initial_place` giving a
     /// contact's place in the undeformed bodies (none if its points are
-    /// gone). Three passes over the
-    /// contacts (the resultant, then the positions across it, then their
-    /// spread), whatever the number of laws; `tallies` is reused from call
-    /// to call.
+    /// gone). Three passes over the contacts (the resultant, then the
+    /// positions across it, then their spread), whatever the number of laws;
+    /// `tallies` is reused from call to call.
     pub fn summaries(
         &self,
         initial_place: impl Fn(&BodyPairContact) -> Option<DVec2>,
