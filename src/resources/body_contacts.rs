@@ -396,4 +396,40 @@ mod tests {
         assert_eq!(hertz.initial_pressure_half_width, 0.0);
         assert!(hertz.pressure_half_width > 0.0);
     }
+
+    #[test]
+    fn both_zones_are_measured_across_a_turned_resultant() {
+        // A Hertz zone across a resultant turned 0.5 rad from the axes, and
+        // initial places that are the contact points stretched twofold
+        // across it and moved. Measured across the resultant, both widths
+        // are exact and their ratio is 2; along y either would be cos 0.5
+        // = 0.88 of it.
+        let (a, along) = (0.2, DVec2::from_angle(0.5));
+        let across = along.perp();
+        let current = (0..=200u32)
+            .map(|k| {
+                let s = a * (Real::from(k) / 100.0 - 1.0);
+                let pressure = (1.0 - (s / a).powi(2)).max(0.0).sqrt();
+                contact(k, 1, along * pressure, DVec2::ONE + across * s)
+            })
+            .collect();
+        let contacts = BodyContacts {
+            laws: vec![BodyPairLaw {
+                a: 0,
+                b: 1,
+                law: LAW,
+            }],
+            current,
+            ..BodyContacts::default()
+        };
+        let mut tallies = Vec::new();
+        contacts.summaries(
+            |c| Some(DVec2::new(0.3, 0.7) + across * 2.0 * (c.at - DVec2::ONE).dot(across)),
+            &mut tallies,
+        );
+        let zone = tallies[0].summary();
+        // 0.5%: the 201 samples' −0.06% (see the test above).
+        assert!((zone.pressure_half_width / a - 1.0).abs() < 5e-3);
+        assert!((zone.initial_pressure_half_width / zone.pressure_half_width - 2.0).abs() < 1e-9);
+    }
 }
