@@ -294,6 +294,24 @@ mod tests {
         }
     }
 
+    /// Hertz's elliptical pressure at `s` across a zone of half-width `a`,
+    /// over its peak.
+    fn hertz_pressure(s: Real, a: Real) -> Real {
+        (1.0 - (s / a).powi(2)).max(0.0).sqrt()
+    }
+
+    /// `current` contacts between bodies with a law for each of `pairs`.
+    fn contacts_between(pairs: &[(u32, u32)], current: Vec<BodyPairContact>) -> BodyContacts {
+        BodyContacts {
+            laws: pairs
+                .iter()
+                .map(|&(a, b)| BodyPairLaw { a, b, law: LAW })
+                .collect(),
+            current,
+            ..BodyContacts::default()
+        }
+    }
+
     #[test]
     fn summaries_keep_each_pair_apart_and_measure_a_hertz_zone() {
         // Body 0 touches body 1 along x with Hertz's elliptical pressure
@@ -304,7 +322,7 @@ mod tests {
         let mut current = Vec::new();
         for k in 0..=200u32 {
             let y = a * (Real::from(k) / 100.0 - 1.0);
-            let pressure = (1.0 - (y / a).powi(2)).max(0.0).sqrt();
+            let pressure = hertz_pressure(y, a);
             current.push(contact(
                 2 * k,
                 1,
@@ -323,32 +341,7 @@ mod tests {
                 current.push(contact(2 * k + 1, 4, DVec2::new(9.0, 9.0), DVec2::ZERO));
             }
         }
-        let contacts = BodyContacts {
-            laws: vec![
-                BodyPairLaw {
-                    a: 0,
-                    b: 1,
-                    law: LAW,
-                },
-                BodyPairLaw {
-                    a: 0,
-                    b: 2,
-                    law: LAW,
-                },
-                BodyPairLaw {
-                    a: 0,
-                    b: 3,
-                    law: LAW,
-                },
-                BodyPairLaw {
-                    a: 1,
-                    b: 2,
-                    law: LAW,
-                },
-            ],
-            current,
-            ..BodyContacts::default()
-        };
+        let contacts = contacts_between(&[(0, 1), (0, 2), (0, 3), (1, 2)], current);
         let mut tallies = Vec::new();
         // The bodies' initial places: moved, and stretched twofold across
         // the contact.
@@ -409,19 +402,10 @@ mod tests {
         let current = (0..=200u32)
             .map(|k| {
                 let s = a * (Real::from(k) / 100.0 - 1.0);
-                let pressure = (1.0 - (s / a).powi(2)).max(0.0).sqrt();
-                contact(k, 1, along * pressure, DVec2::ONE + across * s)
+                contact(k, 1, along * hertz_pressure(s, a), DVec2::ONE + across * s)
             })
             .collect();
-        let contacts = BodyContacts {
-            laws: vec![BodyPairLaw {
-                a: 0,
-                b: 1,
-                law: LAW,
-            }],
-            current,
-            ..BodyContacts::default()
-        };
+        let contacts = contacts_between(&[(0, 1)], current);
         let mut tallies = Vec::new();
         contacts.summaries(
             |c| Some(DVec2::new(0.3, 0.7) + across * 2.0 * (c.at - DVec2::ONE).dot(across)),
