@@ -57,6 +57,10 @@ pub struct ElasticDisk {
     pub small_strain: bool,
 }
 
+/// Shape function gradients with respect to position at one Gauss point,
+/// and the Jacobian's determinant (its area weight).
+type GaussGradients = ([DVec2; 4], Real);
+
 /// State at one Gauss point: Cauchy stress and deformation gradient.
 #[derive(Clone, Copy, Debug)]
 struct GaussState {
@@ -74,10 +78,11 @@ struct Mesh {
     x_initial: Vec<DVec2>,
     /// Current node positions.
     x: Vec<DVec2>,
-    /// Node positions at the start of the step.
-    x_start: Vec<DVec2>,
     /// Node velocities.
     v: Vec<DVec2>,
+    /// Each element's shape function gradients and area weight at its Gauss
+    /// points, on the configuration last measured.
+    gradients: Vec<[GaussGradients; 4]>,
     /// The state of each element's Gauss points.
     gauss: Vec<[GaussState; 4]>,
 }
@@ -85,7 +90,7 @@ struct Mesh {
 /// Shape function gradients with respect to position, in the configuration
 /// `x` of an element's nodes, at local coordinates `s`, and the Jacobian's
 /// determinant (the Gauss point's area weight).
-fn spatial_gradients(x: &[DVec2; 4], s: DVec2) -> ([DVec2; 4], Real) {
+fn spatial_gradients(x: &[DVec2; 4], s: DVec2) -> GaussGradients {
     let local = local_gradients(s);
     let jacobian = x
         .iter()
@@ -125,29 +130,41 @@ impl Mesh {
                 ]
             })
             .collect();
-        let mut mass = vec![0.0; x.len()];
-        for nodes in &connectivity {
-            let corners = nodes.map(|n| x[n]);
-            for s in gauss_points() {
-                let (_, area) = spatial_gradients(&corners, s);
-                for (&n, w) in nodes.iter().zip(shape(s)) {
-                    mass[n] += disk.density * area * w;
-                }
-            }
-        }
         let rest = GaussState {
             stress: SymTensor::ZERO,
             deformation: DMat2::IDENTITY,
         };
-        Self {
+        let mut mesh = Self {
             gauss: vec![[rest; 4]; connectivity.len()],
+            gradients: vec![[([DVec2::ZERO; 4], 0.0); 4]; connectivity.len()],
             connectivity,
-            mass,
+            mass: vec![0.0; x.len()],
             x_initial: x.clone(),
-            x_start: x.clone(),
             v: vec![DVec2::ZERO; x.len()],
             x,
+        };
+        mesh.measure();
+        for (nodes, gradients) in mesh.connectivity.iter().zip(&mesh.gradients) {
+            for (s, (_, area)) in gauss_points().into_iter().zip(gradients) {
+                for (&n, w) in nodes.iter().zip(shape(s)) {
+                    mesh.mass[n] += disk.density * area * w;
+                }
+            }
         }
+        mesh
+    }
+
+    /// Measures every element's gradients and area weights on the current
+    /// configuration.
+    fn measure(&mut self) {
+        let x = &self.x;
+        self.gradients
+            .par_iter_mut()
+            .zip(&self.connectivity)
+            .for_each(|(gradients, nodes)| {
+                let corners = nodes.map(|n| x[n]);
+                *gradients = gauss_points().map(|s| spatial_gradients(&corners, s));
+            });
     }
 
     /// The shortest element edge (m).
@@ -160,47 +177,34 @@ impl Mesh {
     }
 
     /// Each element's share −∫ σ ∇N_a dv of its nodes' forces, over the
-    /// current configuration or, `small_strain`, the initial one.
-    fn element_forces(&self, small_strain: bool, out: &mut [[DVec2; 4]]) {
-        let x = if small_strain {
-            &self.x_initial
-        } else {
-            &self.x
-        };
+    /// configuration last measured.
+    fn element_forces(&self, out: &mut [[DVec2; 4]]) {
         out.par_iter_mut()
-            .zip(&self.connectivity)
+            .zip(&self.gradients)
             .zip(&self.gauss)
-            .for_each(|((forces, nodes), gauss)| {
-                let corners = nodes.map(|n| x[n]);
+            .for_each(|((forces, gradients), gauss)| {
                 *forces = [DVec2::ZERO; 4];
-                for (s, state) in gauss_points().into_iter().zip(gauss) {
-                    let (gradients, area) = spatial_gradients(&corners, s);
+                for ((gradients, area), state) in gradients.iter().zip(gauss) {
                     for (f, g) in forces.iter_mut().zip(gradients) {
-                        *f -= area * state.stress.dot(g);
+                        *f -= *area * state.stress.dot(*g);
                     }
                 }
             });
     }
 
     /// Advances every Gauss point's stress by the step's velocity gradient,
-    /// taken on the configuration at the start of the step or,
-    /// `small_strain`, on the initial one, without its spin and with
-    /// F = I + ∇u.
+    /// taken on the configuration last measured (the start of the step, or
+    /// the initial one in small strain, then without its spin and with
+    /// F = I + ∇u).
     fn update_stresses(&mut self, model: &MaterialModel, small_strain: bool, dt: Real) {
         let model = model.as_model();
-        let x_start = if small_strain {
-            &self.x_initial
-        } else {
-            &self.x_start
-        };
         let (x, x_initial, v) = (&self.x, &self.x_initial, &self.v);
         self.gauss
             .par_iter_mut()
             .zip(&self.connectivity)
-            .for_each(|(gauss, nodes)| {
-                let corners = nodes.map(|n| x_start[n]);
-                for (s, state) in gauss_points().into_iter().zip(gauss.iter_mut()) {
-                    let (gradients, _) = spatial_gradients(&corners, s);
+            .zip(&self.gradients)
+            .for_each(|((gauss, nodes), gradients)| {
+                for (state, &(gradients, _)) in gauss.iter_mut().zip(gradients) {
                     let l = nodes
                         .iter()
                         .zip(gradients)
@@ -250,7 +254,11 @@ impl ElasticDisk {
         for step in 1..=steps {
             let t = step as Real * dt;
             let load = self.acceleration * (t / self.ramp_time).min(1.0);
-            mesh.element_forces(self.small_strain, &mut element_forces);
+            // Small strain keeps the initial configuration's gradients.
+            if !self.small_strain {
+                mesh.measure();
+            }
+            mesh.element_forces(&mut element_forces);
             for (f, m) in force.iter_mut().zip(&mesh.mass) {
                 *f = DVec2::new(*m * load, 0.0);
             }
@@ -259,7 +267,6 @@ impl ElasticDisk {
                     force[n] += *share;
                 }
             }
-            mesh.x_start.copy_from_slice(&mesh.x);
             reactions.clear();
             let Mesh {
                 x,
@@ -429,7 +436,7 @@ mod tests {
         // A uniform stress is in equilibrium: −∫ σ ∇N dv cancels at every
         // interior node, and the outline's forces add up to zero.
         let mut shares = vec![[DVec2::ZERO; 4]; mesh.connectivity.len()];
-        mesh.element_forces(false, &mut shares);
+        mesh.element_forces(&mut shares);
         let mut force = vec![DVec2::ZERO; mesh.x.len()];
         for (nodes, share) in mesh.connectivity.iter().zip(&shares) {
             for (&n, f) in nodes.iter().zip(share) {
@@ -518,7 +525,7 @@ mod tests {
         let (centre, step_angle, dt) = (DVec2::new(-disk.radius, 0.0), 1e-4, 1e-6);
         let turn = DVec2::from_angle(step_angle);
         for _ in 0..1000 {
-            mesh.x_start.copy_from_slice(&mesh.x);
+            mesh.measure();
             for (x, v) in mesh.x.iter_mut().zip(mesh.v.iter_mut()) {
                 let next = centre + turn.rotate(*x - centre);
                 *v = (next - *x) / dt;
