@@ -241,3 +241,58 @@ fn damping_above_one_and_xpic_orders_out_of_range_are_refused() {
         assert_error(parse_edited(from, to), line_of(from, to, to), expected);
     }
 }
+
+#[test]
+fn names_that_become_file_names_may_not_leave_the_output_folder() {
+    let from = "name: Some(\"wave_1d\")";
+    for (to, expected) in [
+        ("name: Some(\"../../up\")", "starts with '.'"),
+        ("name: Some(\"a/b\")", "holds '/'"),
+        ("name: Some(\"\")", "got an empty one"),
+    ] {
+        assert_error(parse_edited(from, to), line_of(from, to, to), expected);
+    }
+    // A name taken from the file's stem is checked too.
+    let text = std::fs::read_to_string(common::scene_path("wave_1d.ron")).unwrap();
+    let unnamed = text.replacen(&format!("{from},"), "", 1);
+    let e = Scene::parse(&unnamed, Path::new(".hidden.ron")).expect_err("hidden name accepted");
+    assert!(
+        e.to_string().starts_with(".hidden.ron: ") && e.to_string().contains("give it a `name`"),
+        "{e}"
+    );
+}
+
+#[test]
+fn curves_and_probes_may_not_overwrite_other_files() {
+    let text = std::fs::read_to_string(common::scene_path("pile_penetration.ron")).unwrap();
+    let from = "name: \"qc\"";
+    assert!(
+        text.contains(from),
+        "fixture text '{from}' not in the pile scene"
+    );
+    for (to, expected) in [
+        ("name: \"energy\"", "would overwrite the run's own files"),
+        ("name: \"probe_qc\"", "would overwrite the run's own files"),
+        ("name: \"../qc\"", "starts with '.'"),
+    ] {
+        let edited = text.replacen(from, to, 1);
+        let e = Scene::parse(&edited, Path::new("bad.ron")).expect_err("curve name accepted");
+        let line = edited[..edited.find(to).unwrap()].matches('\n').count() + 1;
+        assert_error(e, line, expected);
+    }
+    let probe = "(name: \"midpoint\", body: \"bar\", at: (0.5, 0.005)),";
+    let two = "(name: \"mid point\", body: \"bar\", at: (0.5, 0.005)), (name: \"mid_point\", body: \"bar\", at: (0.5, 0.005)),";
+    assert_error(
+        parse_edited(probe, two),
+        line_of(probe, two, "\"mid_point\""),
+        "probes 'mid point' and 'mid_point' would write the same plot files",
+    );
+}
+
+#[test]
+fn a_byte_order_mark_is_ignored() {
+    let text = std::fs::read_to_string(common::scene_path("wave_1d.ron")).unwrap();
+    let with_mark = format!("\u{feff}{text}");
+    let scene = Scene::parse(&with_mark, Path::new("mark.ron")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene, Scene::parse(&text, Path::new("mark.ron")).unwrap());
+}

@@ -10,8 +10,27 @@ use crate::components::{BlockId, BlockOutline, BodyIndex, MaterialPoints, Pose};
 use crate::math::{DVec2, Real};
 use crate::resources::{BlockLog, BodyPairLog, EnergyLog, Grid, Probes, StageLog};
 use crate::scene::CurveSpec;
+use crate::scene::rules::file_safe;
 use crate::simulation::Simulation;
 use std::path::{Path, PathBuf};
+
+/// The stems of the files a run writes into its folder besides the
+/// curves' (`<stem>.csv`, `.png`, `.pvd`, `.bin`): a curve may not take one.
+/// Probe plots are `probe_<name>_<quantity>.png`, so no curve name may
+/// start with [`PROBE_PLOT_PREFIX`].
+pub const RUN_FILE_STEMS: [&str; 8] = [
+    "points",
+    "blocks",
+    "probes",
+    "energy",
+    "body_contacts",
+    "stages",
+    "snapshot",
+    "checkpoint",
+];
+
+/// The start of every probe plot's file name.
+pub const PROBE_PLOT_PREFIX: &str = "probe_";
 
 /// Writes a run's results into one folder:
 /// * `vtk/points_NNNNN.vtu` every frame interval and `points.pvd` (open this in ParaView);
@@ -333,9 +352,10 @@ impl RunOutput {
                         style: SeriesStyle::Line,
                     })
                     .collect();
-                let path = self
-                    .dir
-                    .join(format!("probe_{}_{group}.png", file_safe(&probe.name)));
+                let path = self.dir.join(format!(
+                    "{PROBE_PLOT_PREFIX}{}_{group}.png",
+                    file_safe(&probe.name)
+                ));
                 plot_series(
                     &path,
                     &format!("Probe '{}': {group}", probe.name),
@@ -411,16 +431,3 @@ type ProbeCurve = (&'static str, fn(&crate::resources::ProbeSample) -> Real);
 
 /// One PNG per probe: file suffix, axis label and three curves.
 type ProbePlot = (&'static str, &'static str, [ProbeCurve; 3]);
-
-/// A probe name made safe for a file name.
-fn file_safe(name: &str) -> String {
-    name.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
-}

@@ -428,6 +428,8 @@ impl Scene {
     /// Parses and validates scene text; `path` is used in messages, for
     /// the default name, and its folder for the point lists' files.
     pub fn parse(source: &str, path: &Path) -> Result<Self, SceneError> {
+        // Editors on Windows may start a UTF-8 file with a byte-order mark.
+        let source = source.strip_prefix('\u{feff}').unwrap_or(source);
         let mut scene: Scene = ron::from_str(source).map_err(|e| {
             let message = e.code.to_string();
             // The parser stands past the time entry when it finds its end
@@ -440,7 +442,16 @@ impl Scene {
             SceneError::Parse { location, message }
         })?;
         if scene.name.is_none() {
-            scene.name = path.file_stem().map(|s| s.to_string_lossy().into_owned());
+            let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned());
+            if let Some(Err(e)) = stem.as_deref().map(rules::file_name) {
+                return Err(SceneError::Invalid {
+                    location: SourceLocation::find(source, path, &[]),
+                    message: format!(
+                        "the scene takes its name, and its output folder's, from the file name: {e}; give it a `name`"
+                    ),
+                });
+            }
+            scene.name = stem;
         }
         let folder = path.parent().unwrap_or(Path::new(""));
         if let Err((body, message)) = scene.read_point_files_in(folder) {

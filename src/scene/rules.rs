@@ -73,6 +73,44 @@ pub fn xpic_order(value: u32) -> Result<u32, String> {
     }
 }
 
+/// A name that becomes a file or folder name in the output (the scene's
+/// folder, a curve's files): not empty, no path separator or control
+/// character, and not starting with `.`, so it can never climb out of the
+/// output folder (`..`), name the folder itself (`.`) or hide a file.
+pub fn file_name(name: &str) -> Result<(), String> {
+    if name.is_empty() {
+        Err("expected a name, got an empty one".into())
+    } else if name.starts_with('.') {
+        Err(format!(
+            "the name '{name}' starts with '.': names become file names, and such a file would be hidden or name a folder ('.', '..')"
+        ))
+    } else if let Some(c) = name
+        .chars()
+        .find(|c| *c == '/' || *c == '\\' || c.is_control())
+    {
+        Err(format!(
+            "the name '{name}' holds {c:?}: names become file names, which may not hold path separators or control characters"
+        ))
+    } else {
+        Ok(())
+    }
+}
+
+/// A name made safe for a file name: every character but ASCII letters,
+/// digits, `-` and `_` becomes `_` (probe names, which users write freely,
+/// as in "top, left").
+pub fn file_safe(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
 /// Applies `rule` to an f64 being deserialized.
 fn checked<'de, D: Deserializer<'de>>(
     deserializer: D,

@@ -6,9 +6,10 @@ use super::{
 };
 use crate::components::RigidVelocity;
 use crate::contact::ForceApplication;
+use crate::io::output::{PROBE_PLOT_PREFIX, RUN_FILE_STEMS};
 use crate::math::Real;
 use crate::resources::{MAX_CONTACT_BODIES, PositionUpdate};
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
 /// Largest points-per-cell count: 8 × 8 = 64 points per cell is already far
@@ -32,6 +33,14 @@ impl Scene {
         };
         let quoted = |name: &str| format!("\"{name}\"");
 
+        if let Some(name) = &self.name {
+            rules::file_name(name).map_err(|e| {
+                invalid(
+                    &["name"],
+                    format!("name: {e} (the output folder is out/<name>)"),
+                )
+            })?;
+        }
         let grid = &self.grid;
         rules::positive(grid.cell_size)
             .map_err(|e| invalid(&["grid", "cell_size"], format!("grid.cell_size: {e}")))?;
@@ -330,12 +339,23 @@ impl Scene {
         }
 
         let mut probe_names = BTreeSet::new();
+        let mut probe_files = BTreeMap::new();
         for p in &self.probes {
             let at = ["probes", &quoted(&p.name)];
             if !probe_names.insert(p.name.as_str()) {
                 return Err(invalid(
                     &at,
                     format!("probe name '{}' is used twice", p.name),
+                ));
+            }
+            if let Some(other) = probe_files.insert(rules::file_safe(&p.name), p.name.as_str()) {
+                return Err(invalid(
+                    &at,
+                    format!(
+                        "probes '{other}' and '{}' would write the same plot files ({PROBE_PLOT_PREFIX}{}_*.png): file names keep only letters, digits, '-' and '_'",
+                        p.name,
+                        rules::file_safe(&p.name)
+                    ),
                 ));
             }
             if !p.at.is_finite() {
@@ -364,6 +384,7 @@ impl Scene {
             }
         }
 
+        let mut curve_names = BTreeSet::new();
         for curve in &self.output.curves {
             let at = quoted(&curve.name);
             let fail = |field: &str, message: String| {
@@ -372,6 +393,23 @@ impl Scene {
                     format!("curve '{}': {message}", curve.name),
                 )
             };
+            let fail_name = |message: String| {
+                invalid(
+                    &["curves", &at],
+                    format!("curve '{}': {message}", curve.name),
+                )
+            };
+            rules::file_name(&curve.name).map_err(fail_name)?;
+            if !curve_names.insert(curve.name.as_str()) {
+                return Err(fail_name("the name is used twice".into()));
+            }
+            if RUN_FILE_STEMS.contains(&curve.name.as_str())
+                || curve.name.starts_with(PROBE_PLOT_PREFIX)
+            {
+                return Err(fail_name(format!(
+                    "the name would overwrite the run's own files ({RUN_FILE_STEMS:?}, {PROBE_PLOT_PREFIX}*); choose another"
+                )));
+            }
             let Some(block) = self.blocks.iter().find(|b| b.name == curve.block) else {
                 return Err(fail(
                     "block",
