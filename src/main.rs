@@ -187,6 +187,9 @@ fn check(path: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// The checkpoint's file name in the output folder.
+const CHECKPOINT_FILE: &str = "checkpoint.bin";
+
 /// What `mpdem run` does with checkpoints.
 struct Checkpoints {
     /// Simulated time between two checkpoints (s), if any are written.
@@ -212,7 +215,7 @@ fn run(
         || Path::new("out").join(scene.display_name()),
         Path::to_path_buf,
     );
-    let checkpoint = dir.join("checkpoint.bin");
+    let checkpoint = dir.join(CHECKPOINT_FILE);
     let mut sim = if checkpoints.resume {
         Simulation::resume(&scene, &checkpoint).map_err(|e| e.to_string())?
     } else {
@@ -235,7 +238,7 @@ fn run(
             .map_err(|e| format!("{}: cannot carry on the output: {e}", dir.display()))?
     } else {
         RunOutput::create(&dir, frame_interval, curves, &mut sim)
-            .map_err(|e| format!("{}: cannot write output: {e}", dir.display()))?
+            .map_err(|e| format!("cannot write the output: {e}"))?
     };
     let checkpoint_steps = checkpoints
         .every
@@ -251,13 +254,22 @@ fn run(
             failure = Some(e.to_string());
             break;
         }
-        output
-            .after_step(&mut sim)
-            .map_err(|e| format!("{}: cannot write output: {e}", dir.display()))?;
         let now = sim.clock();
+        let at =
+            |e: &dyn std::fmt::Display| format!("step {} (t = {:.6e} s): {e}", now.step, now.time);
+        if let Err(e) = output.after_step(&mut sim) {
+            failure = Some(format!("cannot write a frame at {}", at(&e)));
+            break;
+        }
         if checkpoint_steps.is_some_and(|n| now.step.is_multiple_of(n) || now.finished()) {
-            sim.write_checkpoint(&checkpoint)
-                .map_err(|e| format!("cannot write the checkpoint: {e}"))?;
+            let written = match output.record(CHECKPOINT_FILE) {
+                Ok(()) => sim.write_checkpoint(&checkpoint).map_err(|e| e.to_string()),
+                Err(e) => Err(e.to_string()),
+            };
+            if let Err(e) = written {
+                failure = Some(format!("cannot write the checkpoint at {}", at(&e)));
+                break;
+            }
         }
         if now.step % 64 == 0 || now.finished() {
             progress.set_position(now.step);
@@ -268,9 +280,10 @@ fn run(
     for w in &sim.world().resource::<StageLog>().warnings {
         eprintln!("warning: {w}");
     }
-    output
-        .finish(&mut sim, failure.is_some())
-        .map_err(|e| format!("{}: cannot write output: {e}", dir.display()))?;
+    if let Err(e) = output.finish(&mut sim, failure.is_some()) {
+        let written = format!("cannot write the output: {e}");
+        return Err(failure.map_or(written.clone(), |f| format!("{f}\n{written}")));
+    }
     if let Some(message) = failure {
         return Err(format!(
             "{message}\nresults up to the failure are in {}",

@@ -125,6 +125,57 @@ fn printed_hash(output: &std::process::Output) -> String {
 }
 
 #[test]
+fn a_new_run_into_a_folder_removes_the_earlier_runs_files_and_no_others() {
+    let (base, long) = common::edited_wave_scene("rerun-long", "end: 1.0", "end: 0.05");
+    let (short_base, short) = common::edited_wave_scene("rerun-short", "end: 1.0", "end: 0.02");
+    let out = base.join("out");
+    let run = |scene: &std::path::Path, extra: &[&str]| {
+        let mut args = vec![
+            "run",
+            scene.to_str().unwrap(),
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let result = mpdem(&args);
+        assert!(
+            result.status.success(),
+            "{}",
+            String::from_utf8_lossy(&result.stderr)
+        );
+    };
+    run(&long, &["--checkpoint-every", "0.01"]);
+    assert!(out.join("vtk/points_00005.vtu").is_file());
+    std::fs::write(out.join("notes.txt"), "the user's").unwrap();
+    std::fs::write(out.join("vtk/mine.vtu"), "the user's").unwrap();
+    run(&short, &[]);
+    let frames: Vec<String> = std::fs::read_dir(out.join("vtk"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|name| name.starts_with("points_"))
+        .collect();
+    assert_eq!(
+        frames.len(),
+        3,
+        "frames at 0, 0.01, 0.02 s only: {frames:?}"
+    );
+    assert!(
+        !out.join("checkpoint.bin").exists(),
+        "the earlier run's checkpoint is left"
+    );
+    assert!(out.join("notes.txt").is_file() && out.join("vtk/mine.vtu").is_file());
+    let listed = std::fs::read_to_string(out.join("outputs.txt")).unwrap();
+    assert!(
+        listed.lines().any(|l| l == "vtk/points_00002.vtu"),
+        "{listed}"
+    );
+    assert!(!listed.contains("points_00003"), "{listed}");
+    std::fs::remove_dir_all(&base).ok();
+    std::fs::remove_dir_all(&short_base).ok();
+}
+
+#[test]
 fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outputs() {
     // The first run ends at 0.055 s, off the 0.01 s frame interval: its
     // extra last frame is not in the longer run.
@@ -144,12 +195,21 @@ fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outp
     };
     printed_hash(&run(&short, &resumed, &["--checkpoint-every", "0.02"]));
     assert!(resumed.join("checkpoint.bin").is_file());
-    // The folder then holds frames past the checkpoint (0.055 s), as after a
-    // run stopped later than its last checkpoint: the resumed run drops
-    // them from the collection and writes them again.
-    printed_hash(&run(&long, &resumed, &[]));
-    let resumed_hash = printed_hash(&run(&long, &resumed, &["--resume"]));
     let straight_hash = printed_hash(&run(&long, &straight, &[]));
+    // The folder then gets the longer run's frames and collection, past the
+    // checkpoint (0.055 s), as after a run stopped later than its last
+    // checkpoint: the resumed run drops them from the collection and writes
+    // them again.
+    for entry in std::fs::read_dir(straight.join("vtk")).unwrap() {
+        let name = entry.unwrap().file_name();
+        std::fs::copy(
+            straight.join("vtk").join(&name),
+            resumed.join("vtk").join(&name),
+        )
+        .unwrap();
+    }
+    std::fs::copy(straight.join("points.pvd"), resumed.join("points.pvd")).unwrap();
+    let resumed_hash = printed_hash(&run(&long, &resumed, &["--resume"]));
     assert_eq!(resumed_hash, straight_hash);
     for file in [
         "probes.csv",

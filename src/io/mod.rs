@@ -6,6 +6,7 @@
 pub mod checkpoint;
 pub mod csv;
 pub mod kept_state;
+pub mod manifest;
 pub mod output;
 pub mod plot;
 pub mod state_hash;

@@ -2,6 +2,7 @@
 //! during the run; CSV series and PNG plots at the end.
 
 use super::csv;
+use super::manifest::{OutputManifest, located};
 use super::plot::{Series, SeriesStyle, plot_points, plot_series};
 use super::vtk::{
     PointFrame, read_collection, write_collection, write_outlines, write_point_frame,
@@ -38,15 +39,50 @@ pub const PROBE_PLOT_PREFIX: &str = "probe_";
 /// * `probes.csv`, `energy.csv`, with stages `stages.csv`, and with body
 ///   contact laws `body_contacts.csv`;
 /// * `snapshot.png` (final state coloured by displacement magnitude),
-///   `energy.png` and `probe_<name>_{velocity,displacement,stress}.png`.
+///   `energy.png` and `probe_<name>_{velocity,displacement,stress}.png`;
+/// * `outputs.txt`, the list of these files ([`OutputManifest`]): a new run
+///   into the folder first removes the files an earlier run listed.
+///
+/// Each file is written under a temporary name and renamed, so a run that
+/// fails while writing (a full disk) leaves no half-written file; errors
+/// name the file.
 pub struct RunOutput {
-    dir: PathBuf,
+    folder: Folder,
     frame_every: u64,
     frames: Vec<(Real, String)>,
     block_frames: Vec<(Real, String)>,
     buffers: FrameBuffers,
     /// Reaction–displacement curves to write at the end.
     curves: Vec<CurveSpec>,
+}
+
+/// The output folder and the list of the files written into it.
+struct Folder {
+    dir: PathBuf,
+    manifest: OutputManifest,
+}
+
+impl Folder {
+    /// Writes the file `relative` (`/`-separated, inside the folder) with
+    /// `writer`, given the path to write: lists it, has it written under a
+    /// temporary name in the same folder (keeping its extension, which the
+    /// PNG writer reads) and renames it into place. On failure the
+    /// temporary file is removed and the error names the file.
+    fn write_file(
+        &mut self,
+        relative: &str,
+        writer: impl FnOnce(&Path) -> std::io::Result<()>,
+    ) -> std::io::Result<()> {
+        self.manifest.record(relative)?;
+        let path = self.dir.join(relative);
+        let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+        let partial = path.with_file_name(format!(".partial-{}", name.unwrap_or_default()));
+        let written = writer(&partial).and_then(|()| std::fs::rename(&partial, &path));
+        written.map_err(|e| {
+            std::fs::remove_file(&partial).ok();
+            located(&path, e)
+        })
+    }
 }
 
 /// Concatenated columns of all bodies, reused from frame to frame.
@@ -67,19 +103,25 @@ struct FrameBuffers {
 type CurveSample = (Real, Real, Real);
 
 impl RunOutput {
-    /// Creates the folder (and `vtk/` inside it) and writes frame 0.
-    /// `frame_interval` is the simulated time between frames (s); `curves`
-    /// are written at the end.
+    /// Creates the folder (and `vtk/` inside it), removes the files an
+    /// earlier run into it listed, and writes frame 0. `frame_interval` is
+    /// the simulated time between frames (s); `curves` are written at the
+    /// end.
     pub fn create(
         dir: &Path,
         frame_interval: Real,
         curves: &[CurveSpec],
         sim: &mut Simulation,
     ) -> std::io::Result<Self> {
-        std::fs::create_dir_all(dir.join("vtk"))?;
+        let vtk = dir.join("vtk");
+        std::fs::create_dir_all(&vtk).map_err(|e| located(&vtk, e))?;
+        let (manifest, _) = OutputManifest::start(dir)?;
         let frame_every = ((frame_interval / sim.clock().dt).round() as u64).max(1);
         let mut output = Self {
-            dir: dir.to_path_buf(),
+            folder: Folder {
+                dir: dir.to_path_buf(),
+                manifest,
+            },
             frame_every,
             frames: Vec::new(),
             block_frames: Vec::new(),
@@ -117,7 +159,10 @@ impl RunOutput {
         };
         let blocks = dir.join("blocks.pvd");
         Ok(Self {
-            dir: dir.to_path_buf(),
+            folder: Folder {
+                dir: dir.to_path_buf(),
+                manifest: OutputManifest::resume(dir)?,
+            },
             frame_every,
             frames: kept(&dir.join("points.pvd"))?,
             block_frames: if blocks.is_file() {
@@ -132,7 +177,13 @@ impl RunOutput {
 
     /// The output folder.
     pub fn dir(&self) -> &Path {
-        &self.dir
+        &self.folder.dir
+    }
+
+    /// Lists `relative`, a file in the folder that something other than
+    /// this writer puts there (the run's checkpoint), among the run's files.
+    pub fn record(&mut self, relative: &str) -> std::io::Result<()> {
+        self.folder.manifest.record(relative)
     }
 
     /// Call after every step: writes a frame when one is due.
@@ -156,77 +207,32 @@ impl RunOutput {
         let world = sim.world();
         let probes = world.resource::<Probes>();
         let energy = world.resource::<EnergyLog>();
-        csv::write_probes(&self.dir.join("probes.csv"), probes)?;
-        csv::write_energy(&self.dir.join("energy.csv"), energy)?;
+        self.folder
+            .write_file("probes.csv", |path| csv::write_probes(path, probes))?;
+        self.folder
+            .write_file("energy.csv", |path| csv::write_energy(path, energy))?;
         let blocks = world.resource::<BlockLog>();
         if !blocks.names.is_empty() {
-            csv::write_blocks(&self.dir.join("blocks.csv"), blocks)?;
+            self.folder
+                .write_file("blocks.csv", |path| csv::write_blocks(path, blocks))?;
         }
         let pairs = world.resource::<BodyPairLog>();
         if !pairs.samples.is_empty() {
-            csv::write_body_pairs(&self.dir.join("body_contacts.csv"), pairs, &body_names)?;
+            self.folder.write_file("body_contacts.csv", |path| {
+                csv::write_body_pairs(path, pairs, &body_names)
+            })?;
         }
         let stages = world.resource::<StageLog>();
         if !stages.records.is_empty() {
-            csv::write_stages(&self.dir.join("stages.csv"), stages)?;
+            self.folder
+                .write_file("stages.csv", |path| csv::write_stages(path, stages))?;
         }
         for curve in &self.curves {
-            self.write_curve(curve, blocks)?;
+            write_curve(&mut self.folder, curve, blocks)?;
         }
         self.plot_energy(energy)?;
         self.plot_probes(probes)?;
         self.plot_snapshot(sim.name(), world.resource::<Grid>())
-    }
-
-    /// Writes `<name>.csv` (`time,displacement,resistance`, scaled) and
-    /// `<name>.png` for one curve.
-    fn write_curve(&self, curve: &CurveSpec, log: &BlockLog) -> std::io::Result<()> {
-        let Some(block) = log.names.iter().position(|n| *n == curve.block) else {
-            return Ok(());
-        };
-        let d = curve.direction.normalize_or_zero();
-        let samples: Vec<_> = log
-            .samples
-            .iter()
-            .filter(|s| s.block as usize == block)
-            .collect();
-        let Some(first) = samples.first() else {
-            return Ok(());
-        };
-        let force_at = |time: Real, whole: DVec2| match curve.part {
-            None => whole,
-            Some(k) => log
-                .parts
-                .iter()
-                .find(|p| p.block as usize == block && p.part as usize == k && p.time == time)
-                .map_or(DVec2::ZERO, |p| p.force),
-        };
-        let rows: Vec<CurveSample> = samples
-            .iter()
-            .map(|s| {
-                (
-                    s.time,
-                    (s.origin - first.origin).dot(d) * curve.displacement_scale,
-                    -force_at(s.time, s.force).dot(d) * curve.force_scale,
-                )
-            })
-            .collect();
-        csv::write_curve(&self.dir.join(format!("{}.csv", curve.name)), &rows)?;
-        let points: Vec<(Real, Real)> = rows.iter().map(|r| (r.1, r.2)).collect();
-        plot_series(
-            &self.dir.join(format!("{}.png", curve.name)),
-            &curve.name,
-            curve
-                .displacement_label
-                .as_deref()
-                .unwrap_or("displacement (m)"),
-            curve.force_label.as_deref().unwrap_or("force (N/m)"),
-            &[Series {
-                name: "",
-                points: &points,
-                style: SeriesStyle::Line,
-            }],
-        )
     }
 
     fn write_frame(&mut self, sim: &mut Simulation) -> std::io::Result<()> {
@@ -239,29 +245,34 @@ impl RunOutput {
             stresses: &b.stresses,
             body: &b.body,
         };
-        let name = format!("points_{:05}.vtu", self.frames.len());
-        write_point_frame(&self.dir.join("vtk").join(&name), &frame)?;
-        self.frames.push((sim.clock().time, format!("vtk/{name}")));
+        let name = format!("vtk/points_{:05}.vtu", self.frames.len());
+        self.folder
+            .write_file(&name, |path| write_point_frame(path, &frame))?;
+        self.frames.push((sim.clock().time, name));
         if !b.outlines.is_empty() {
-            let name = format!("blocks_{:05}.vtu", self.block_frames.len());
-            write_outlines(&self.dir.join("vtk").join(&name), &b.outlines)?;
-            self.block_frames
-                .push((sim.clock().time, format!("vtk/{name}")));
+            let name = format!("vtk/blocks_{:05}.vtu", self.block_frames.len());
+            self.folder
+                .write_file(&name, |path| write_outlines(path, &b.outlines))?;
+            self.block_frames.push((sim.clock().time, name));
         }
         // The collections list every frame so far, so a stopped run can be
         // opened in ParaView and resumed.
         self.write_collections()
     }
 
-    fn write_collections(&self) -> std::io::Result<()> {
-        write_collection(&self.dir.join("points.pvd"), &self.frames)?;
+    fn write_collections(&mut self) -> std::io::Result<()> {
+        let frames = &self.frames;
+        self.folder
+            .write_file("points.pvd", |path| write_collection(path, frames))?;
         if !self.block_frames.is_empty() {
-            write_collection(&self.dir.join("blocks.pvd"), &self.block_frames)?;
+            let frames = &self.block_frames;
+            self.folder
+                .write_file("blocks.pvd", |path| write_collection(path, frames))?;
         }
         Ok(())
     }
 
-    fn plot_energy(&self, energy: &EnergyLog) -> std::io::Result<()> {
+    fn plot_energy(&mut self, energy: &EnergyLog) -> std::io::Result<()> {
         let pick = |f: fn(&crate::resources::EnergySample) -> Real| -> Vec<(Real, Real)> {
             energy.samples.iter().map(|s| (s.time, f(s))).collect()
         };
@@ -272,42 +283,44 @@ impl RunOutput {
             pick(|s| s.total()),
             pick(|s| s.balance()),
         );
-        plot_series(
-            &self.dir.join("energy.png"),
-            "Energy",
-            "time (s)",
-            "energy (J/m)",
-            &[
-                Series {
-                    name: "kinetic",
-                    points: &kinetic,
-                    style: SeriesStyle::Line,
-                },
-                Series {
-                    name: "strain",
-                    points: &strain,
-                    style: SeriesStyle::Line,
-                },
-                Series {
-                    name: "contact",
-                    points: &contact,
-                    style: SeriesStyle::Line,
-                },
-                Series {
-                    name: "total",
-                    points: &total,
-                    style: SeriesStyle::Line,
-                },
-                Series {
-                    name: "total + gravity + dissipated + damped",
-                    points: &balance,
-                    style: SeriesStyle::Line,
-                },
-            ],
-        )
+        self.folder.write_file("energy.png", |path| {
+            plot_series(
+                path,
+                "Energy",
+                "time (s)",
+                "energy (J/m)",
+                &[
+                    Series {
+                        name: "kinetic",
+                        points: &kinetic,
+                        style: SeriesStyle::Line,
+                    },
+                    Series {
+                        name: "strain",
+                        points: &strain,
+                        style: SeriesStyle::Line,
+                    },
+                    Series {
+                        name: "contact",
+                        points: &contact,
+                        style: SeriesStyle::Line,
+                    },
+                    Series {
+                        name: "total",
+                        points: &total,
+                        style: SeriesStyle::Line,
+                    },
+                    Series {
+                        name: "total + gravity + dissipated + damped",
+                        points: &balance,
+                        style: SeriesStyle::Line,
+                    },
+                ],
+            )
+        })
     }
 
-    fn plot_probes(&self, probes: &Probes) -> std::io::Result<()> {
+    fn plot_probes(&mut self, probes: &Probes) -> std::io::Result<()> {
         let groups: [ProbePlot; 3] = [
             (
                 "velocity",
@@ -352,38 +365,94 @@ impl RunOutput {
                         style: SeriesStyle::Line,
                     })
                     .collect();
-                let path = self.dir.join(format!(
-                    "{PROBE_PLOT_PREFIX}{}_{group}.png",
-                    file_safe(&probe.name)
-                ));
-                plot_series(
-                    &path,
-                    &format!("Probe '{}': {group}", probe.name),
-                    "time (s)",
-                    unit,
-                    &series,
-                )?;
+                let name = format!("{PROBE_PLOT_PREFIX}{}_{group}.png", file_safe(&probe.name));
+                self.folder.write_file(&name, |path| {
+                    plot_series(
+                        path,
+                        &format!("Probe '{}': {group}", probe.name),
+                        "time (s)",
+                        unit,
+                        &series,
+                    )
+                })?;
             }
         }
         Ok(())
     }
 
     /// The last written frame as a PNG.
-    fn plot_snapshot(&self, name: &str, grid: &Grid) -> std::io::Result<()> {
+    fn plot_snapshot(&mut self, name: &str, grid: &Grid) -> std::io::Result<()> {
         let b = &self.buffers;
         let time = self.frames.last().map_or(0.0, |f| f.0);
         let magnitude: Vec<Real> = b.displacements.iter().map(|u| u.length()).collect();
-        plot_points(
-            &self.dir.join("snapshot.png"),
-            &format!("{name} at t = {time:.4} s"),
-            "|u| (m)",
-            &b.positions,
-            &magnitude,
-            b.marker,
-            (grid.origin, grid.max()),
-            &b.outlines,
-        )
+        self.folder.write_file("snapshot.png", |path| {
+            plot_points(
+                path,
+                &format!("{name} at t = {time:.4} s"),
+                "|u| (m)",
+                &b.positions,
+                &magnitude,
+                b.marker,
+                (grid.origin, grid.max()),
+                &b.outlines,
+            )
+        })
     }
+}
+
+/// Writes `<name>.csv` (`time,displacement,resistance`, scaled) and
+/// `<name>.png` for one curve.
+fn write_curve(folder: &mut Folder, curve: &CurveSpec, log: &BlockLog) -> std::io::Result<()> {
+    let Some(block) = log.names.iter().position(|n| *n == curve.block) else {
+        return Ok(());
+    };
+    let d = curve.direction.normalize_or_zero();
+    let samples: Vec<_> = log
+        .samples
+        .iter()
+        .filter(|s| s.block as usize == block)
+        .collect();
+    let Some(first) = samples.first() else {
+        return Ok(());
+    };
+    let force_at = |time: Real, whole: DVec2| match curve.part {
+        None => whole,
+        Some(k) => log
+            .parts
+            .iter()
+            .find(|p| p.block as usize == block && p.part as usize == k && p.time == time)
+            .map_or(DVec2::ZERO, |p| p.force),
+    };
+    let rows: Vec<CurveSample> = samples
+        .iter()
+        .map(|s| {
+            (
+                s.time,
+                (s.origin - first.origin).dot(d) * curve.displacement_scale,
+                -force_at(s.time, s.force).dot(d) * curve.force_scale,
+            )
+        })
+        .collect();
+    folder.write_file(&format!("{}.csv", curve.name), |path| {
+        csv::write_curve(path, &rows)
+    })?;
+    let points: Vec<(Real, Real)> = rows.iter().map(|r| (r.1, r.2)).collect();
+    folder.write_file(&format!("{}.png", curve.name), |path| {
+        plot_series(
+            path,
+            &curve.name,
+            curve
+                .displacement_label
+                .as_deref()
+                .unwrap_or("displacement (m)"),
+            curve.force_label.as_deref().unwrap_or("force (N/m)"),
+            &[Series {
+                name: "",
+                points: &points,
+                style: SeriesStyle::Line,
+            }],
+        )
+    })
 }
 
 impl FrameBuffers {
