@@ -75,7 +75,7 @@ pub fn particle_to_grid(
                 body: name.0.clone(),
                 point: p,
                 field: "position",
-                detail: format!("{} has left the grid", points.position[p]),
+                detail: grid.why_outside(points.position[p], points.half_size[p]),
             });
         }
         let window = layer.window();

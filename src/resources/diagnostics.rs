@@ -5,7 +5,7 @@ use bevy_ecs::prelude::Resource;
 
 /// Where and how the numerics broke down.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("step {step} (t = {time:e} s): body '{body}', point {point}: {field} {detail}")]
+#[error("step {step} (t = {time:.6e} s): body '{body}', point {point}: {field} {detail}")]
 pub struct NumericalFailure {
     /// Step during which it happened (1-based: the step being computed).
     pub step: u64,

@@ -91,6 +91,53 @@ impl Grid {
         )
     }
 
+    /// Why a point's stencil was refused (see [`StencilGrid`]): its position
+    /// outside the grid, or, inside it, its support reaching past an open
+    /// (`Free`) edge, where there are no nodes to take its weight; the
+    /// nearest such edge is named.
+    pub fn why_outside(&self, position: DVec2, half_size: DVec2) -> String {
+        let (lo, hi) = (self.origin, self.max());
+        if !(position.cmpge(lo).all() && position.cmple(hi).all()) {
+            return format!("{position} has left the grid, from {lo} to {hi}");
+        }
+        let edges = [
+            (
+                "left",
+                self.edges.left,
+                position.x - lo.x,
+                format!("x = {}", lo.x),
+            ),
+            (
+                "right",
+                self.edges.right,
+                hi.x - position.x,
+                format!("x = {}", hi.x),
+            ),
+            (
+                "bottom",
+                self.edges.bottom,
+                position.y - lo.y,
+                format!("y = {}", lo.y),
+            ),
+            (
+                "top",
+                self.edges.top,
+                hi.y - position.y,
+                format!("y = {}", hi.y),
+            ),
+        ];
+        let nearest = edges
+            .into_iter()
+            .filter(|edge| !edge.1.is_wall())
+            .min_by(|a, b| a.2.total_cmp(&b.2));
+        match nearest {
+            Some((name, _, distance, at)) => format!(
+                "{position} lies {distance:.3e} m from the grid's {name} edge {at}, and the point's shape functions (domain half-size {half_size}) reach past it; that edge is Free (the default for every edge), with no nodes beyond it: give it a wall (grid.edges.{name}: Slip or Fixed) or extend the grid"
+            ),
+            None => format!("{position}: the point's shape functions reach past the grid"),
+        }
+    }
+
     /// Upper-right corner (m).
     pub fn max(&self) -> DVec2 {
         self.origin + DVec2::new(self.cells[0] as Real, self.cells[1] as Real) * self.cell_size

@@ -1,5 +1,6 @@
 //! Turning a validated scene into a bevy `World`.
 
+use super::layout_warnings::{body_overlap_warnings, free_edge_warnings};
 use super::{InitialStress, InitialVelocity, Scene, SceneError, SourceLocation, VelocityField};
 use crate::components::{
     BodyIndex, BodyName, DampedEnergy, GridLayer, Material, MaterialPoints, NewPoint,
@@ -168,6 +169,16 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         }
     }
     laws.sort_unstable_by_key(|l| (l.a, l.b));
+    let placed: Vec<(&str, &MaterialPoints)> = scene
+        .bodies
+        .iter()
+        .zip(&bodies)
+        .filter_map(|(spec, &e)| Some((spec.name.as_str(), world.get::<MaterialPoints>(e)?)))
+        .collect();
+    if placed.len() == bodies.len() {
+        warnings.extend(free_edge_warnings(world.resource::<Grid>(), &placed));
+        warnings.extend(body_overlap_warnings(&placed, &laws));
+    }
     // Room for every sample, as for the probes: recording never allocates.
     world.insert_resource(BodyPairLog {
         samples: Vec::with_capacity(samples * laws.len()),

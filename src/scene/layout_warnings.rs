@@ -1,0 +1,190 @@
+//! Warnings about where the bodies start: layouts that are valid but that
+//! a run will not survive, or will start with a jolt the user did not mean.
+
+use crate::components::MaterialPoints;
+use crate::math::{DVec2, Real};
+use crate::resources::{BodyPairLaw, Grid};
+use std::collections::HashMap;
+
+/// How close (in cells) a body's points' domains may come to an open grid
+/// edge before it counts as touching: round-off of a body placed on the
+/// edge, far below any distance a user means.
+const TOUCH: Real = 1e-6;
+
+/// A warning for each body whose points' domains touch an open (`Free`)
+/// grid edge: nothing holds the body there, and its points stop the run as
+/// soon as their shape functions reach past the edge (a body resting on
+/// the grid's bottom edge under gravity does so at its second step).
+/// `bodies` are (name, points) in scene order.
+pub fn free_edge_warnings(grid: &Grid, bodies: &[(&str, &MaterialPoints)]) -> Vec<String> {
+    let (lo, hi) = (grid.origin, grid.max());
+    let touch = TOUCH * grid.cell_size;
+    let mut warnings = Vec::new();
+    for (name, points) in bodies {
+        let (low, high) = points.position.iter().zip(&points.half_size).fold(
+            (DVec2::INFINITY, DVec2::NEG_INFINITY),
+            |(low, high), (x, h)| (low.min(*x - *h), high.max(*x + *h)),
+        );
+        let edges = [
+            (
+                "left",
+                grid.edges.left,
+                low.x - lo.x,
+                format!("x = {}", lo.x),
+            ),
+            (
+                "right",
+                grid.edges.right,
+                hi.x - high.x,
+                format!("x = {}", hi.x),
+            ),
+            (
+                "bottom",
+                grid.edges.bottom,
+                low.y - lo.y,
+                format!("y = {}", lo.y),
+            ),
+            (
+                "top",
+                grid.edges.top,
+                hi.y - high.y,
+                format!("y = {}", hi.y),
+            ),
+        ];
+        for (edge, condition, gap, at) in edges {
+            if !condition.is_wall() && gap <= touch {
+                warnings.push(format!(
+                    "body '{name}' touches the grid's {edge} edge {at}, which is Free (the default for every edge): nothing holds the body there, and the run stops as soon as a point's shape functions reach past the edge; give it a wall (grid.edges.{edge}: Slip or Fixed) or extend the grid"
+                ));
+            }
+        }
+    }
+    warnings
+}
+
+/// A warning for each pair of bodies under a contact law whose points'
+/// contact disks overlap at the start: the law's springs then push the
+/// bodies apart at once, with a force the user did not set up (k_n δ per
+/// pair, δ up to the disks' diameter). `bodies` are (name, points) in
+/// scene order, `laws` the scene's body pairs with a law.
+pub fn body_overlap_warnings(
+    bodies: &[(&str, &MaterialPoints)],
+    laws: &[BodyPairLaw],
+) -> Vec<String> {
+    let mut warnings = Vec::new();
+    for law in laws {
+        let (a, b) = (&bodies[law.a as usize], &bodies[law.b as usize]);
+        let (pairs, deepest) = overlapping_disks(a.1, b.1);
+        if pairs > 0 {
+            warnings.push(format!(
+                "bodies '{}' and '{}' overlap at the start: {pairs} pairs of their points' contact disks overlap, the deepest by {deepest:.3e} m; their contact law pushes them apart at once: move them apart by at least that",
+                a.0, b.0
+            ));
+        }
+    }
+    warnings
+}
+
+/// The pairs of points of `a` and `b` whose contact disks overlap, and the
+/// deepest overlap (m): `b`'s points binned in square buckets as wide as
+/// the widest disk diameter, so each of `a`'s points looks at the 3 × 3
+/// buckets around it.
+fn overlapping_disks(a: &MaterialPoints, b: &MaterialPoints) -> (usize, Real) {
+    let widest = |p: &MaterialPoints| p.contact_radius.iter().copied().fold(0.0, Real::max);
+    let bucket = 2.0 * widest(a).max(widest(b));
+    if bucket <= 0.0 || a.is_empty() || b.is_empty() {
+        return (0, 0.0);
+    }
+    let key = |x: DVec2| ((x.x / bucket).floor() as i64, (x.y / bucket).floor() as i64);
+    let mut buckets: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    for (j, x) in b.position.iter().enumerate() {
+        buckets.entry(key(*x)).or_default().push(j);
+    }
+    let (mut pairs, mut deepest) = (0, 0.0);
+    for (i, x) in a.position.iter().enumerate() {
+        let (kx, ky) = key(*x);
+        for (dx, dy) in (-1..=1).flat_map(|dx| (-1..=1).map(move |dy| (dx, dy))) {
+            for &j in buckets.get(&(kx + dx, ky + dy)).into_iter().flatten() {
+                let overlap = a.contact_radius[i] + b.contact_radius[j] - x.distance(b.position[j]);
+                if overlap > 0.0 {
+                    pairs += 1;
+                    deepest = Real::max(deepest, overlap);
+                }
+            }
+        }
+    }
+    (pairs, deepest)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::components::NewPoint;
+    use crate::contact::ContactLaw;
+    use crate::math::SymTensor;
+    use crate::resources::EdgeCondition;
+
+    /// A row of `n` points spaced 1 from `start` along x, domains of
+    /// half-size ½ and contact disks of radius ½ (touching neighbours).
+    fn row(start: DVec2, n: usize) -> MaterialPoints {
+        let mut points = MaterialPoints::default();
+        for k in 0..n {
+            points.push(NewPoint {
+                position: start + DVec2::new(k as Real, 0.0),
+                velocity: DVec2::ZERO,
+                volume: 1.0,
+                mass: 1.0,
+                half_size: DVec2::splat(0.5),
+                stress: SymTensor::ZERO,
+                contact_radius: 0.5,
+            });
+        }
+        points
+    }
+
+    #[test]
+    fn a_body_on_a_free_edge_is_named_with_the_edge_and_one_on_a_wall_is_not() {
+        let mut grid = Grid {
+            origin: DVec2::ZERO,
+            cell_size: 1.0,
+            cells: [10, 10],
+            edges: Default::default(),
+        };
+        let resting = row(DVec2::new(2.0, 0.5), 3);
+        let lifted = row(DVec2::new(2.0, 0.5 + 1e-3), 3);
+        let warnings = free_edge_warnings(&grid, &[("slab", &resting), ("lifted", &lifted)]);
+        assert_eq!(warnings.len(), 1, "{warnings:?}");
+        assert!(warnings[0].contains("body 'slab' touches the grid's bottom edge y = 0"));
+        grid.edges.bottom = EdgeCondition::Slip;
+        assert!(free_edge_warnings(&grid, &[("slab", &resting)]).is_empty());
+    }
+
+    #[test]
+    fn overlapping_bodies_under_a_law_are_named_with_their_deepest_overlap() {
+        let below = row(DVec2::ZERO, 10);
+        let touching = row(DVec2::new(0.0, 1.0), 10);
+        let into = row(DVec2::new(0.25, 0.75), 10);
+        let law = |a, b| BodyPairLaw {
+            a,
+            b,
+            law: ContactLaw {
+                normal_stiffness: 1.0,
+                tangential_stiffness: 1.0,
+                friction: 0.0,
+                normal_damping: 0.0,
+            },
+        };
+        let bodies = [("below", &below), ("touching", &touching), ("into", &into)];
+        let warnings = body_overlap_warnings(&bodies, &[law(0, 1)]);
+        assert!(warnings.is_empty(), "disks that only touch: {warnings:?}");
+        let warnings = body_overlap_warnings(&bodies, &[law(0, 1), law(0, 2)]);
+        assert_eq!(warnings.len(), 1, "{warnings:?}");
+        // Each point of `into` reaches one of `below`'s, √(0.25² + 0.75²) =
+        // 0.791 away (the next is 1.06 away): δ = 1 − 0.791 = 0.209.
+        assert!(
+            warnings[0].contains("bodies 'below' and 'into' overlap at the start: 10 pairs")
+                && warnings[0].contains("2.094e-1 m"),
+            "{warnings:?}"
+        );
+    }
+}
