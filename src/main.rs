@@ -225,6 +225,16 @@ fn run(
         eprintln!("warning: {w}");
     }
     let clock = sim.clock();
+    if checkpoints.resume && clock.step > clock.total_steps() {
+        return Err(format!(
+            "{}: the checkpoint is at step {} (t = {:.6e} s), past the scene's end at step {} (time.end = {:e} s): nothing to run; give a later time.end to carry the run on",
+            checkpoint.display(),
+            clock.step,
+            clock.time,
+            clock.total_steps(),
+            clock.end
+        ));
+    }
     let frame_interval = scene.output.frame_interval_or_default(clock.end);
     let curves = &scene.output.curves;
     let mut output = if checkpoints.resume {

@@ -221,7 +221,17 @@ fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outp
         let read = |dir: &std::path::Path| std::fs::read(dir.join(file)).expect(file);
         assert!(read(&resumed) == read(&straight), "{file} differs");
     }
-    // Refusals: no checkpoint in the folder, a checkpoint interval of zero.
+    // Refusals: a checkpoint past the scene's end, no checkpoint in the
+    // folder, a checkpoint interval of zero.
+    let (early_base, early) = common::edited_wave_scene("resume-early", "end: 1.0", "end: 0.03");
+    let result = run(&early, &resumed, &["--resume"]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        !result.status.success()
+            && stderr.contains("at step 550 (t = 5.500000e-2 s), past the scene's end at step 300"),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(&early_base).ok();
     let empty = base.join("empty");
     let result = run(&long, &empty, &["--resume"]);
     let stderr = String::from_utf8_lossy(&result.stderr);

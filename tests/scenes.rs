@@ -296,3 +296,41 @@ fn a_byte_order_mark_is_ignored() {
     let scene = Scene::parse(&with_mark, Path::new("mark.ron")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(scene, Scene::parse(&text, Path::new("mark.ron")).unwrap());
 }
+
+#[test]
+fn a_point_count_beyond_memory_is_refused_before_the_points_are_made() {
+    // 1e-4 m cells of 8 × 8 points on the 1 m × 0.01 m bar: 6.4e7 points
+    // (about 32 GB); refused from the bar's extent, without making them.
+    let text = std::fs::read_to_string(common::scene_path("wave_1d.ron")).unwrap();
+    let edited = text
+        .replacen("cell_size: 0.005,", "cell_size: 0.0001,", 1)
+        .replacen("cells: (200, 2),", "cells: (10000, 100),", 1)
+        .replacen("points_per_cell: 2,", "points_per_cell: 8,", 1);
+    let e = Scene::parse(&edited, Path::new("bad.ron")).expect_err("6.4e7 points accepted");
+    let line = edited[..edited.find("shape:").unwrap()]
+        .matches('\n')
+        .count()
+        + 1;
+    assert_error(e, line, "up to 6.400e7 points at 8 per cell");
+}
+
+#[test]
+fn a_kinetic_energy_ratio_above_one_is_refused() {
+    let text = std::fs::read_to_string(common::scene_path("geostatic_column.ron")).unwrap();
+    let (from, to) = ("ratio: 1e-10", "ratio: 2.0");
+    let edited = text.replacen(from, to, 1);
+    let e = Scene::parse(&edited, Path::new("bad.ron")).expect_err("ratio 2 accepted");
+    let line = edited[..edited.find(to).unwrap()].matches('\n').count() + 1;
+    assert_error(e, line, "expected a ratio in (0, 1], got 2");
+    // A scene built in code is checked by the same rule.
+    let mut scene = Scene::parse(&text, Path::new("ok.ron")).unwrap();
+    scene.stages[0].end = mpdem::scene::StageEnd::KineticEnergyRatio {
+        ratio: 0.0,
+        max_time: 1.0,
+    };
+    let refusal = scene.validate().expect_err("ratio 0 accepted").to_string();
+    assert!(
+        refusal.contains("expected a ratio in (0, 1], got 0"),
+        "{refusal}"
+    );
+}

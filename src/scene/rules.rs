@@ -44,6 +44,16 @@ pub fn fraction(value: Real) -> Result<Real, String> {
     }
 }
 
+/// A ratio in (0, 1], e.g. of a kinetic energy to its peak: 0 would
+/// never be reached, and above 1 the condition holds at once.
+pub fn ratio(value: Real) -> Result<Real, String> {
+    if value > 0.0 && value <= 1.0 {
+        Ok(value)
+    } else {
+        Err(format!("expected a ratio in (0, 1], got {value}"))
+    }
+}
+
 /// A local damping coefficient in [0, 1]. At 1 a force that would speed a
 /// node or point up is cancelled and one that slows it down is doubled, as
 /// the paper's settling stages use it.
@@ -156,6 +166,11 @@ pub fn de_xpic_order<'de, D: Deserializer<'de>>(d: D) -> Result<Option<u32>, D::
         .map(xpic_order)
         .transpose()
         .map_err(D::Error::custom)
+}
+
+/// `deserialize_with` form of [`ratio`].
+pub fn de_ratio<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
+    checked(d, ratio)
 }
 
 /// `deserialize_with` form of [`damping`].

@@ -58,7 +58,7 @@ pub enum StageEnd {
     /// it reached during the stage, or after `max_time` (s) with a warning.
     KineticEnergyRatio {
         /// Threshold ratio in (0, 1].
-        #[serde(deserialize_with = "rules::de_positive")]
+        #[serde(deserialize_with = "rules::de_ratio")]
         ratio: Real,
         /// Longest the stage may last (s).
         #[serde(deserialize_with = "rules::de_positive")]
@@ -80,6 +80,21 @@ pub enum StageEnd {
 }
 
 impl StageEnd {
+    /// Checks the ranges (as parsing does, for stages built in code).
+    pub fn check(&self) -> Result<(), String> {
+        match *self {
+            Self::Duration(d) => rules::positive(d).map(drop),
+            Self::KineticEnergyRatio { ratio, max_time } => {
+                rules::ratio(ratio)?;
+                rules::positive(max_time).map(drop)
+            }
+            Self::StressChange { below, max_time } => {
+                rules::positive(below)?;
+                rules::positive(max_time).map(drop)
+            }
+        }
+    }
+
     /// The longest the stage can last (s).
     pub fn max_time(&self) -> Real {
         match *self {

@@ -16,6 +16,12 @@ use std::path::Path;
 /// beyond what MPM accuracy gains from; larger counts are almost surely typos.
 const MAX_POINTS_PER_CELL: u32 = 8;
 
+/// Most material points a scene may have: a point takes about 500 bytes
+/// (its columns, its stencil, its place in the scatter order), so 2e7
+/// points take 10 GB, beyond what a 2D run on one machine can use; such
+/// counts come from a cell size or `points_per_cell` typed wrong.
+const MAX_POINTS: u128 = 20_000_000;
+
 /// Most nodes a grid may have: 5e7 nodes make an 4.4 GB layer per body (88
 /// bytes a node), beyond what a 2D run on one machine can use; node indices
 /// are stored as u32, which this also keeps in range.
@@ -133,6 +139,7 @@ impl Scene {
         let (grid_min, grid_max) = (grid.origin, grid.max());
         let margin = self.settings.shape_function.required_margin_cells() * grid.cell_size;
         let mut body_names = BTreeSet::new();
+        let mut total_points: Real = 0.0;
         for b in &self.bodies {
             let name = quoted(&b.name);
             let fail = |field: &str, message: String| invalid(&["bodies", &name, field], message);
@@ -174,6 +181,24 @@ impl Scene {
             b.shape
                 .check()
                 .map_err(|e| fail("shape", format!("body '{}': {e}", b.name)))?;
+            // Counted from the shape's bounding box before the points are
+            // made: an overestimate for shapes that do not fill it.
+            let (low, high) = b.shape.bounds();
+            let lattice = (high - low) / (grid.cell_size / Real::from(b.points_per_cell));
+            let estimate = match &b.shape {
+                Shape::Points { points, .. } => points.len() as Real,
+                _ => (lattice.x.ceil().max(1.0)) * (lattice.y.ceil().max(1.0)),
+            };
+            total_points += estimate;
+            if total_points > MAX_POINTS as Real {
+                return Err(fail(
+                    "shape",
+                    format!(
+                        "body '{}': up to {estimate:.3e} points at {} per cell of {} m, {total_points:.3e} with the bodies before it: more than the {MAX_POINTS} a scene may hold",
+                        b.name, b.points_per_cell, grid.cell_size
+                    ),
+                ));
+            }
             let points = b
                 .shape
                 .points(grid.origin, grid.cell_size, b.points_per_cell);
@@ -551,6 +576,10 @@ impl Scene {
             if !stage_names.insert(stage.name.as_str()) {
                 return Err(fail("name", "the name is used twice".into()));
             }
+            stage
+                .end
+                .check()
+                .map_err(|e| fail("end", format!("end: {e}")))?;
             if let Some(g) = stage.gravity
                 && !g.is_finite()
             {
