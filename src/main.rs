@@ -10,6 +10,8 @@ use mpdem::verify::{CASES, CaseReport, Context, RunEvent, Verdict};
 use mpdem::{Simulation, bench, verify};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Material point method with DEM-enriched contact (2D, plane strain).
 #[derive(Parser)]
@@ -258,6 +260,7 @@ fn run(
     progress.set_position(clock.step);
     progress.reset_eta();
     let started = std::time::Instant::now();
+    let interrupted = stop_on_ctrl_c();
     let mut failure = None;
     while !sim.clock().finished() {
         if let Err(e) = sim.step() {
@@ -281,6 +284,9 @@ fn run(
                 break;
             }
         }
+        if interrupted.load(Ordering::SeqCst) {
+            break;
+        }
         if now.step % 64 == 0 || now.finished() {
             progress.set_position(now.step);
             progress.set_message(format!("t = {:.4e} s", now.time));
@@ -301,6 +307,26 @@ fn run(
         ));
     }
     let now = sim.clock();
+    if !now.finished() {
+        let resume = if checkpoint_steps.is_some() {
+            let written = output
+                .record(CHECKPOINT_FILE)
+                .map_err(|e| e.to_string())
+                .and_then(|()| sim.write_checkpoint(&checkpoint).map_err(|e| e.to_string()));
+            match written {
+                Ok(()) => "; `--resume` carries it on".to_string(),
+                Err(e) => format!("; the checkpoint could not be written: {e}"),
+            }
+        } else {
+            String::new()
+        };
+        return Err(format!(
+            "stopped by Ctrl-C at step {} (t = {:.6e} s); results up to there are in {}{resume}",
+            now.step,
+            now.time,
+            dir.display()
+        ));
+    }
     let hash = sim.state_hash();
     println!(
         "{}: {} steps to t = {:.6} s in {:.1} s; state hash {hash:016x}; results in {}",
@@ -311,6 +337,23 @@ fn run(
         output.dir().display()
     );
     Ok(())
+}
+
+/// A flag a first Ctrl-C raises, so that the run stops after its step and
+/// writes its results (and a checkpoint, if it writes them); a second
+/// Ctrl-C ends the process at once, as without the handler.
+fn stop_on_ctrl_c() -> Arc<AtomicBool> {
+    let interrupted = Arc::new(AtomicBool::new(false));
+    let flag = Arc::clone(&interrupted);
+    let handler = ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::SeqCst) {
+            std::process::exit(130);
+        }
+    });
+    if let Err(e) = handler {
+        eprintln!("warning: Ctrl-C will end the run without writing its results: {e}");
+    }
+    interrupted
 }
 
 fn progress_bar(total: u64, quiet: bool) -> ProgressBar {

@@ -306,3 +306,49 @@ fn verify_tabulates_a_case_and_fails_when_a_target_is_missed() {
     assert!(!unknown.status.success());
     assert!(String::from_utf8_lossy(&unknown.stderr).contains("no case 'no_such_case'"));
 }
+
+#[cfg(unix)]
+#[test]
+fn ctrl_c_stops_the_run_after_its_step_and_writes_its_results_and_a_checkpoint() {
+    // The wave for 10 s (100 000 steps, about 20 s of running): Ctrl-C
+    // arrives once the first checkpoint is written, long before the end.
+    let (base, scene) = common::edited_wave_scene("ctrl-c", "end: 1.0", "end: 10.0");
+    let out = base.join("out");
+    let child = Command::new(env!("CARGO_BIN_EXE_mpdem"))
+        .args([
+            "run",
+            scene.to_str().unwrap(),
+            "--quiet",
+            "--checkpoint-every",
+            "0.01",
+        ])
+        .args(["--out", out.to_str().unwrap()])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("mpdem runs");
+    let started = std::time::Instant::now();
+    while !out.join("checkpoint.bin").is_file() {
+        assert!(started.elapsed().as_secs() < 60, "no checkpoint after 60 s");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let signal = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(signal.success());
+    let result = child.wait_with_output().expect("mpdem ends");
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(!result.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("stopped by Ctrl-C at step") && stderr.contains("`--resume` carries it on"),
+        "{stderr}"
+    );
+    // The series end where the run stopped, and the checkpoint is there.
+    let energy = std::fs::read_to_string(out.join("energy.csv")).unwrap();
+    let rows = energy.lines().count() - 1;
+    assert!((2..100_001).contains(&rows), "{rows} energy rows");
+    for file in ["probes.csv", "snapshot.png", "points.pvd"] {
+        assert!(out.join(file).is_file(), "{file} missing");
+    }
+    std::fs::remove_dir_all(&base).ok();
+}
