@@ -4,7 +4,7 @@
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use mpdem::io::RunOutput;
-use mpdem::resources::StageLog;
+use mpdem::resources::{StageLog, StagePlan};
 use mpdem::scene::Scene;
 use mpdem::verify::{CASES, CaseReport, Context, RunEvent, Verdict};
 use mpdem::{Simulation, bench, verify};
@@ -52,11 +52,12 @@ enum Command {
     },
     /// Measure particle-updates per second on the standard elastic block, without and with a rigid ground contact.
     Bench {
-        /// Number of material points (approximate: the block is square).
-        #[arg(long, default_value_t = 40_000)]
-        points: usize,
-        /// Timed steps.
-        #[arg(long, default_value_t = 200)]
+        /// Number of material points (approximate: the block is square), at
+        /// least 100.
+        #[arg(long, default_value_t = 40_000, value_parser = clap::value_parser!(u64).range(100..))]
+        points: u64,
+        /// Timed steps, at least 1.
+        #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(1..))]
         steps: u64,
         /// Worker threads [default: all cores].
         #[arg(long)]
@@ -66,7 +67,7 @@ enum Command {
         #[arg(long)]
         scene: Option<PathBuf>,
         /// Untimed steps before the timed ones, e.g. to reach the contact
-        /// phase of a scene [default: 5, which sizes every buffer].
+        /// phase of a scene (the default sizes every buffer).
         #[arg(long, default_value_t = 5)]
         warmup: u64,
     },
@@ -121,7 +122,7 @@ fn main() -> ExitCode {
             warmup,
         } => with_threads(threads, || match scene {
             Some(path) => bench_scene(&path, warmup, steps),
-            None => run_bench(points, warmup, steps),
+            None => run_bench(points as usize, warmup, steps),
         }),
         Command::Verify {
             cases,
@@ -256,7 +257,7 @@ fn run(
         .every
         .map(|t| ((t / clock.dt).round() as u64).max(1));
     let total = clock.total_steps();
-    let progress = progress_bar(total, quiet);
+    let progress = progress_bar(total, quiet, "{bar:40} {msg} elapsed {elapsed} ETA {eta}");
     progress.set_position(clock.step);
     progress.reset_eta();
     let started = std::time::Instant::now();
@@ -288,8 +289,23 @@ fn run(
             break;
         }
         if now.step % 64 == 0 || now.finished() {
+            let stage = sim.world().get_resource::<StagePlan>().and_then(|plan| {
+                let spec = plan.scene.stages.get(plan.progress.current)?;
+                Some(format!(
+                    ", stage {} '{}'",
+                    plan.progress.current + 1,
+                    spec.name
+                ))
+            });
+            // The message carries the step with its time (the bar's own
+            // position may be drawn a refresh apart from the message).
             progress.set_position(now.step);
-            progress.set_message(format!("t = {:.4e} s", now.time));
+            progress.set_message(format!(
+                "step {}/{total} t = {:.4e} s{}",
+                now.step,
+                now.time,
+                stage.unwrap_or_default()
+            ));
         }
     }
     progress.finish_and_clear();
@@ -356,14 +372,15 @@ fn stop_on_ctrl_c() -> Arc<AtomicBool> {
     interrupted
 }
 
-fn progress_bar(total: u64, quiet: bool) -> ProgressBar {
+/// A progress bar on stderr drawn with `template` (indicatif's), hidden
+/// with `quiet`.
+fn progress_bar(total: u64, quiet: bool, template: &str) -> ProgressBar {
     if quiet {
         return ProgressBar::hidden();
     }
     let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());
     let style =
-        ProgressStyle::with_template("{bar:40} step {pos}/{len} {msg} elapsed {elapsed} ETA {eta}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar());
+        ProgressStyle::with_template(template).unwrap_or_else(|_| ProgressStyle::default_bar());
     bar.set_style(style);
     bar
 }
@@ -454,7 +471,11 @@ fn verify(names: &[String], scenes: &Path, out: &Path, quiet: bool) -> Result<()
         ));
     }
     let table = out.join("verify.csv");
-    let progress = progress_bar(0, quiet);
+    let progress = progress_bar(
+        0,
+        quiet,
+        "{bar:40} step {pos}/{len} {msg} elapsed {elapsed} ETA {eta}",
+    );
     let observe = |event: RunEvent| match event {
         RunEvent::Started { run, steps } => {
             // reset() also brings back a bar finished and cleared by the

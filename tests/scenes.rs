@@ -334,3 +334,18 @@ fn a_kinetic_energy_ratio_above_one_is_refused() {
         "{refusal}"
     );
 }
+
+#[test]
+fn an_end_off_the_time_step_warns_with_the_steps_taken() {
+    let mut scene = common::load_scene("wave_1d.ron");
+    scene.time.end = 1.5e-4;
+    let sim = Simulation::from_scene(&scene).unwrap();
+    assert_eq!(sim.clock().total_steps(), 1);
+    assert_eq!(sim.warnings().len(), 1, "{:?}", sim.warnings());
+    assert!(
+        sim.warnings()[0].contains("not a multiple of time.dt = 1e-4 s")
+            && sim.warnings()[0].contains("1, to t = 1e-4 s"),
+        "{}",
+        sim.warnings()[0]
+    );
+}

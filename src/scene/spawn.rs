@@ -73,6 +73,16 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         }
         bodies.push(entity);
     }
+    let steps = clock.total_steps();
+    let ratio = clock.end / clock.dt;
+    if (ratio - steps as Real).abs() > 1e-6 * ratio.max(1.0) {
+        warnings.push(format!(
+            "time.end = {:e} s is not a multiple of time.dt = {:e} s: the run takes the nearest whole number of steps, {steps}, to t = {:e} s",
+            clock.end,
+            clock.dt,
+            steps as Real * clock.dt
+        ));
+    }
     for material in &scene.materials {
         let wave_speed = (material.model.as_model().p_wave_modulus() / material.density).sqrt();
         let limit = grid.cell_size / wave_speed;
