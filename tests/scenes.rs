@@ -163,6 +163,17 @@ fn geostatic_stress_needs_gravity_pointing_down() {
     scene.gravity = DVec2::new(0.0, 9.81);
     let message = common::refusal(&scene);
     assert!(message.contains("gravity pointing down"), "{message}");
+    // A free surface below the column's top would put its top in tension.
+    scene.gravity = DVec2::new(0.0, -9.81);
+    scene.bodies[0].initial_stress = Some(mpdem::scene::InitialStress::Geostatic {
+        k0: 0.5,
+        surface: Some(0.5),
+    });
+    let message = common::refusal(&scene);
+    assert!(
+        message.contains("the geostatic surface y = 0.5 lies below the body's highest points"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -347,5 +358,17 @@ fn an_end_off_the_time_step_warns_with_the_steps_taken() {
             && sim.warnings()[0].contains("1, to t = 1e-4 s"),
         "{}",
         sim.warnings()[0]
+    );
+}
+
+#[test]
+fn a_probe_far_from_its_body_warns() {
+    let mut scene = common::load_scene("wave_1d.ron");
+    scene.probes[0].at = DVec2::new(0.5, 0.5);
+    let sim = Simulation::from_scene(&scene).unwrap();
+    let warnings = sim.warnings().join("\n");
+    assert!(
+        warnings.contains("probe 'midpoint' at [0.5, 0.5] records the nearest point of body 'bar'"),
+        "{warnings}"
     );
 }

@@ -119,3 +119,36 @@ fn bad_stages_are_refused() {
     let message = common::refusal(&scene);
     assert!(message.contains("used twice"), "{message}");
 }
+
+#[test]
+fn blocks_are_removed_added_and_moved_only_while_they_are_there() {
+    let base = common::load_scene("pile_penetration.ron");
+    // The pile, there from the start, removed in the surcharge stage: the
+    // penetration stage cannot drive it, nor remove it again.
+    let mut scene = base.clone();
+    scene.stages[1].remove_blocks.push("pile".into());
+    let message = common::refusal(&scene);
+    assert!(
+        message.contains("stage 'penetration': block 'pile' is not there during this stage"),
+        "{message}"
+    );
+    scene.stages[2].block_velocities.clear();
+    scene.stages[2].remove_blocks.push("pile".into());
+    let message = common::refusal(&scene);
+    assert!(
+        message.contains("block 'pile' is not there when the stage begins"),
+        "{message}"
+    );
+    // Added in a stage, it may not be added again (a second block of
+    // that name would be spawned).
+    let mut scene = base;
+    scene.blocks[0].present = false;
+    scene.stages[1].add_blocks.push("pile".into());
+    assert!(Simulation::from_scene(&scene).is_ok());
+    scene.stages[2].add_blocks.push("pile".into());
+    let message = common::refusal(&scene);
+    assert!(
+        message.contains("block 'pile' is there already: an earlier stage added it"),
+        "{message}"
+    );
+}

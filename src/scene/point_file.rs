@@ -119,6 +119,9 @@ fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, String> {
     };
     let volume = column("volume");
     let mut points = Vec::new();
+    // Each position's first line: two points in one place would share a
+    // domain twice over, and their contact disks would overlap fully.
+    let mut placed = std::collections::HashMap::new();
     for (line, text) in lines {
         let values: Vec<&str> = text.split(',').map(str::trim).collect();
         if values.len() != names.len() {
@@ -139,6 +142,13 @@ fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, String> {
             }
         };
         let position = DVec2::new(number(x)?, number(y)?);
+        // + 0.0 makes −0 and 0 one place.
+        let key = ((position.x + 0.0).to_bits(), (position.y + 0.0).to_bits());
+        if let Some(first) = placed.insert(key, line) {
+            return Err(format!(
+                "{line}: the point at {position} is listed twice (first on line {first})"
+            ));
+        }
         let volume = match volume {
             Some(k) => {
                 let v = number(k)?;
@@ -162,6 +172,15 @@ fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_point_listed_twice_is_refused_with_both_lines() {
+        let e = parse_point_list("x,y\n1,2\n3,4\n# again\n1.0,2.0\n").unwrap_err();
+        assert_eq!(
+            e,
+            "5: the point at [1, 2] is listed twice (first on line 2)"
+        );
+    }
 
     #[test]
     fn columns_in_any_order_with_comments_and_spaces() {

@@ -117,6 +117,17 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
                     .total_cmp(&points[b].distance_squared(spec.at))
             })
             .unwrap_or(0);
+        if let Some(x) = points.get(nearest)
+            && x.distance(spec.at) > scene.grid.cell_size
+        {
+            warnings.push(format!(
+                "probe '{}' at {} records the nearest point of body '{}', at {x}, {:.3e} m away (more than a cell): is `at` where you meant?",
+                spec.name,
+                spec.at,
+                spec.body,
+                x.distance(spec.at)
+            ));
+        }
         probes.probes.push(Probe {
             name: spec.name.clone(),
             body: bodies[k],

@@ -5,7 +5,7 @@
 
 use super::{BlockSpec, MotionSpec, Scene, SceneError, SourceLocation};
 use crate::components::{
-    BlockContactLaw, BlockContacts, BlockId, BlockOutline, MaterialPoints, NeighbourList,
+    BlockContactLaw, BlockContacts, BlockId, BlockOutline, BodyName, MaterialPoints, NeighbourList,
     PartReactions, Pose, Reaction, RigidMass, RigidMotion, RigidShape, RigidVelocity,
 };
 use crate::contact::disk_shape_contact;
@@ -70,7 +70,8 @@ pub fn spawn_block(
         let Some(points) = world.get::<MaterialPoints>(body) else {
             continue;
         };
-        warnings.extend(overlap_warning(&spec.name, points, &shape, &pose));
+        let name = world.get::<BodyName>(body).map_or("", |n| n.0.as_str());
+        warnings.extend(overlap_warning(&spec.name, name, points, &shape, &pose));
         let lightest = points.mass.iter().copied().fold(Real::INFINITY, Real::min);
         // In `Area` mode the stiffness is per area; the largest slope of the
         // overlap area, d A / d δ = 2 r at δ = r, makes it a spring.
@@ -161,6 +162,7 @@ fn block_motion(spec: &BlockSpec) -> Result<(RigidMotion, RigidMass, RigidVeloci
 /// if it exceeds [`OVERLAP_WARNING_FRACTION`] of the disk radius.
 fn overlap_warning(
     block: &str,
+    body: &str,
     points: &MaterialPoints,
     shape: &parry2d_f64::shape::SharedShape,
     pose: &Pose,
@@ -174,7 +176,7 @@ fn overlap_warning(
         .fold((0.0, 0.0), |worst, c| if c.0 > worst.0 { c } else { worst });
     (depth > OVERLAP_WARNING_FRACTION * radius).then(|| {
         format!(
-            "block '{block}' overlaps a body at the start by {depth:e} m (disk radius {radius:e} m)"
+            "block '{block}' overlaps body '{body}' at the start by {depth:e} m (disk radius {radius:e} m): its contacts push the body away at once"
         )
     })
 }

@@ -270,6 +270,19 @@ impl Scene {
                     );
                     return Err(fail("initial_stress", message));
                 }
+                let top = points
+                    .iter()
+                    .map(|p| p.position.y)
+                    .fold(Real::NEG_INFINITY, Real::max);
+                if let Some(s) = *surface
+                    && s < top
+                {
+                    let message = format!(
+                        "body '{}': the geostatic surface y = {s} lies below the body's highest points (y = {top}): those would start in tension; give the surface at or above them, or leave it out (the body's top)",
+                        b.name
+                    );
+                    return Err(fail("initial_stress", message));
+                }
             }
             for c in &b.constraints {
                 if !(c.min.is_finite() && c.max.is_finite()) || c.min.cmpgt(c.max).any() {
@@ -565,6 +578,12 @@ impl Scene {
         }
 
         let mut stage_names = BTreeSet::new();
+        let mut present: BTreeSet<&str> = self
+            .blocks
+            .iter()
+            .filter(|b| b.present)
+            .map(|b| b.name.as_str())
+            .collect();
         for stage in &self.stages {
             let at = quoted(&stage.name);
             let fail = |field: &str, message: String| {
@@ -593,8 +612,17 @@ impl Scene {
                     )
                 })
             };
+            // Removals come first, then additions (systems/stages.rs).
             for name in &stage.remove_blocks {
                 block(name, "remove_blocks")?;
+                if !present.remove(name.as_str()) {
+                    return Err(fail(
+                        "remove_blocks",
+                        format!(
+                            "block '{name}' is not there when the stage begins (an earlier stage removed it, or none added it)"
+                        ),
+                    ));
+                }
             }
             for name in &stage.add_blocks {
                 if block(name, "add_blocks")?.present {
@@ -605,9 +633,24 @@ impl Scene {
                         ),
                     ));
                 }
+                if !present.insert(name.as_str()) {
+                    return Err(fail(
+                        "add_blocks",
+                        format!("block '{name}' is there already: an earlier stage added it"),
+                    ));
+                }
             }
             for change in &stage.block_velocities {
                 let b = block(&change.block, "block_velocities")?;
+                if !present.contains(change.block.as_str()) {
+                    return Err(fail(
+                        "block_velocities",
+                        format!(
+                            "block '{}' is not there during this stage: add it first",
+                            change.block
+                        ),
+                    ));
+                }
                 if !matches!(b.motion, MotionSpec::Kinematic(_)) {
                     return Err(fail(
                         "block_velocities",
