@@ -2,8 +2,20 @@
 
 use crate::math::Real;
 use crate::resources::{BlockLog, BodyPairLog, EnergyLog, Probes, StageLog};
+use std::borrow::Cow;
 use std::io::Write;
 use std::path::Path;
+
+/// A name as one CSV field (RFC 4180): quoted, with its quotes doubled,
+/// when it holds a comma, a quote or a line break, so that a probe named
+/// "top, left" stays one column.
+fn field(name: &str) -> Cow<'_, str> {
+    if name.contains([',', '"', '\n', '\r']) {
+        Cow::Owned(format!("\"{}\"", name.replace('"', "\"\"")))
+    } else {
+        Cow::Borrowed(name)
+    }
+}
 
 /// Writes `probes.csv`: one row per probe and sample time, columns
 /// probe, time, x, y, ux, uy, vx, vy, sxx, syy, sxy, szz (SI, stress tension-positive).
@@ -11,7 +23,7 @@ pub fn write_probes(path: &Path, probes: &Probes) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     writeln!(out, "probe,time,x,y,ux,uy,vx,vy,sxx,syy,sxy,szz")?;
     for s in &probes.samples {
-        let name = &probes.probes[s.probe].name;
+        let name = field(&probes.probes[s.probe].name);
         let [sxx, syy, sxy, szz] = s.stress.to_array();
         writeln!(
             out,
@@ -72,7 +84,7 @@ pub fn write_body_pairs(path: &Path, log: &BodyPairLog, names: &[String]) -> std
         "time,body_a,body_b,force_x,force_y,contacts,half_width,pressure_half_width,initial_pressure_half_width"
     )?;
     for s in &log.samples {
-        let name = |i: u32| names.get(i as usize).map_or("?", String::as_str);
+        let name = |i: u32| field(names.get(i as usize).map_or("?", String::as_str));
         let p = &s.summary;
         writeln!(
             out,
@@ -112,7 +124,7 @@ pub fn write_stages(path: &Path, log: &StageLog) -> std::io::Result<()> {
             out,
             "{},{},{:e},{:e},{},{}",
             r.index,
-            r.name,
+            field(&r.name),
             r.start,
             r.end,
             r.steps,
@@ -129,7 +141,7 @@ pub fn write_blocks(path: &Path, log: &BlockLog) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     writeln!(out, "block,time,fx,fy,torque,x,y,angle,vx,vy,omega")?;
     for s in &log.samples {
-        let name = log.names.get(s.block as usize).map_or("?", String::as_str);
+        let name = field(log.names.get(s.block as usize).map_or("?", String::as_str));
         writeln!(
             out,
             "{name},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
@@ -146,4 +158,14 @@ pub fn write_blocks(path: &Path, log: &BlockLog) -> std::io::Result<()> {
         )?;
     }
     out.flush()
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn names_with_commas_or_quotes_stay_one_field() {
+        assert_eq!(super::field("top"), "top");
+        assert_eq!(super::field("top, left"), "\"top, left\"");
+        assert_eq!(super::field("the \"pile\""), "\"the \"\"pile\"\"\"");
+    }
 }

@@ -96,6 +96,8 @@ struct FrameBuffers {
     marker: Real,
     /// Outlines of the rigid blocks in the world, blocks in scene order.
     outlines: Vec<Vec<DVec2>>,
+    /// The scene index of each outline's block.
+    outline_block: Vec<u32>,
 }
 
 /// One sample of a reaction–displacement curve: time, scaled displacement,
@@ -251,8 +253,9 @@ impl RunOutput {
         self.frames.push((sim.clock().time, name));
         if !b.outlines.is_empty() {
             let name = format!("vtk/blocks_{:05}.vtu", self.block_frames.len());
-            self.folder
-                .write_file(&name, |path| write_outlines(path, &b.outlines))?;
+            self.folder.write_file(&name, |path| {
+                write_outlines(path, &b.outlines, &b.outline_block)
+            })?;
             self.block_frames.push((sim.clock().time, name));
         }
         // The collections list every frame so far, so a stopped run can be
@@ -465,13 +468,18 @@ impl FrameBuffers {
         self.body.clear();
         self.marker = Real::INFINITY;
         self.outlines.clear();
+        self.outline_block.clear();
         let mut query = sim.world_mut().query::<(&BlockId, &BlockOutline, &Pose)>();
         let mut blocks: Vec<_> = query
             .iter(sim.world())
             .map(|(id, outline, pose)| (id.index, outline.in_world(pose).collect::<Vec<_>>()))
             .collect();
         blocks.sort_by_key(|b| b.0);
-        self.outlines.extend(blocks.into_iter().flat_map(|b| b.1));
+        for (block, outlines) in blocks {
+            self.outline_block
+                .extend(std::iter::repeat_n(block, outlines.len()));
+            self.outlines.extend(outlines);
+        }
         for (entity, _) in sim.bodies() {
             let world = sim.world();
             let (Some(index), Some(points)) = (

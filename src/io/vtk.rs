@@ -76,19 +76,38 @@ pub fn write_point_frame(path: &Path, frame: &PointFrame) -> std::io::Result<()>
         },
         types: vec![CellType::Vertex; n],
     };
-    write_unstructured_grid(path, frame.positions, cells, point_data)
+    write_unstructured_grid(path, frame.positions, cells, point_data, Vec::new())
 }
 
 /// Writes closed polylines (e.g., rigid block outlines) as a VTK XML UnstructuredGrid (`.vtu`)
-/// with one `VTK_POLY_LINE` cell per outline.
+/// with one `VTK_POLY_LINE` cell per outline and a `"block"` cell array (UInt32), `blocks[k]`
+/// for outline k (the block's index in the scene, to colour by in ParaView; a compound block has
+/// one outline per part).
 ///
 /// Each outline's points are stored once; its cell returns to the first point to close the loop.
-/// Empty outlines are skipped. Fails with the I/O error of creating or writing the file.
-pub fn write_outlines(path: &Path, outlines: &[Vec<DVec2>]) -> std::io::Result<()> {
+/// Empty outlines are skipped. Fails with `InvalidInput` if `blocks` and `outlines` differ in
+/// length, or with the I/O error of creating or writing the file.
+pub fn write_outlines(path: &Path, outlines: &[Vec<DVec2>], blocks: &[u32]) -> std::io::Result<()> {
+    if blocks.len() != outlines.len() {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            format!(
+                "{} outlines but {} block indices",
+                outlines.len(),
+                blocks.len()
+            ),
+        ));
+    }
     let mut points = Vec::new();
     let mut connectivity = Vec::new();
     let mut offsets = Vec::new();
-    for outline in outlines.iter().filter(|outline| !outline.is_empty()) {
+    let mut cell_blocks = Vec::new();
+    for (outline, &block) in outlines
+        .iter()
+        .zip(blocks)
+        .filter(|(outline, _)| !outline.is_empty())
+    {
+        cell_blocks.push(block);
         let first = points.len() as u64;
         points.extend_from_slice(outline);
         connectivity.extend(first..points.len() as u64);
@@ -102,7 +121,10 @@ pub fn write_outlines(path: &Path, outlines: &[Vec<DVec2>]) -> std::io::Result<(
             offsets,
         },
     };
-    write_unstructured_grid(path, &points, cells, Vec::new())
+    let cell_data = vec![Attribute::DataArray(
+        DataArray::scalars("block", 1).with_data(cell_blocks),
+    )];
+    write_unstructured_grid(path, &points, cells, Vec::new(), cell_data)
 }
 
 /// Writes a ParaView collection (`.pvd`) listing `(time, file name relative to the .pvd)` entries,
@@ -176,6 +198,7 @@ fn write_unstructured_grid(
     points: &[DVec2],
     cells: Cells,
     point_data: Vec<Attribute>,
+    cell_data: Vec<Attribute>,
 ) -> std::io::Result<()> {
     let vtk = Vtk {
         version: Version::new_xml(1, 0),
@@ -187,7 +210,7 @@ fn write_unstructured_grid(
             cells,
             data: Attributes {
                 point: point_data,
-                cell: Vec::new(),
+                cell: cell_data,
             },
         }),
     };
@@ -345,7 +368,7 @@ mod tests {
             body: &[],
         };
         write_point_frame(&dir.join("points.vtu"), &frame).unwrap();
-        write_outlines(&dir.join("outlines.vtu"), &[]).unwrap();
+        write_outlines(&dir.join("outlines.vtu"), &[], &[]).unwrap();
         for name in ["points.vtu", "outlines.vtu"] {
             let path = dir.join(name);
             let text = std::fs::read_to_string(&path).unwrap();
@@ -368,9 +391,14 @@ mod tests {
             DVec2::new(2.5, 1.0),
         ];
         let path = test_dir("outlines").join("blocks_0000.vtu");
-        write_outlines(&path, &[square, Vec::new(), triangle]).unwrap();
+        write_outlines(&path, &[square, Vec::new(), triangle], &[3, 4, 5]).unwrap();
 
         let piece = read_piece(&path);
+        let Attribute::DataArray(block) = &piece.data.cell[0] else {
+            panic!("no block array: {:?}", piece.data.cell);
+        };
+        assert_eq!(block.name, "block");
+        assert_eq!(block.data, IOBuffer::U32(vec![3, 5]));
         assert_eq!(piece.num_points(), 7);
         assert_eq!(piece.cells.types, vec![CellType::PolyLine; 2]);
         let (connectivity, offsets) = piece.cells.cell_verts.into_xml();
