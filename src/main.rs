@@ -220,6 +220,12 @@ fn run(
     );
     let checkpoint = dir.join(CHECKPOINT_FILE);
     let mut sim = if checkpoints.resume {
+        if !checkpoint.is_file() {
+            return Err(format!(
+                "--resume: no checkpoint at {}; a run writes one when given --checkpoint-every T",
+                checkpoint.display()
+            ));
+        }
         Simulation::resume(&scene, &checkpoint).map_err(|e| e.to_string())?
     } else {
         Simulation::from_scene(&scene).map_err(|e| e.to_string())?
