@@ -256,8 +256,15 @@ fn run(
         RunOutput::resume(&dir, frame_interval, curves, &sim)
             .map_err(|e| format!("{}: cannot carry on the output: {e}", dir.display()))?
     } else {
-        RunOutput::create(&dir, frame_interval, curves, &mut sim)
-            .map_err(|e| format!("cannot write the output: {e}"))?
+        let (output, removed) = RunOutput::create(&dir, frame_interval, curves, &mut sim)
+            .map_err(|e| format!("cannot write the output: {e}"))?;
+        if removed > 0 {
+            eprintln!(
+                "removed the {removed} files an earlier run wrote into {} (listed in its outputs.txt)",
+                dir.display()
+            );
+        }
+        output
     };
     let checkpoint_steps = checkpoints
         .every
@@ -265,6 +272,10 @@ fn run(
     let total = clock.total_steps();
     let progress = progress_bar(total, quiet, "{bar:40} {msg} elapsed {elapsed} ETA {eta}");
     progress.set_position(clock.step);
+    progress.set_message(format!(
+        "step {}/{total} t = {:.4e} s",
+        clock.step, clock.time
+    ));
     progress.reset_eta();
     let started = std::time::Instant::now();
     let interrupted = stop_on_ctrl_c();
@@ -281,15 +292,11 @@ fn run(
             failure = Some(format!("cannot write a frame at {}", at(&e)));
             break;
         }
-        if checkpoint_steps.is_some_and(|n| now.step.is_multiple_of(n) || now.finished()) {
-            let written = match output.record(CHECKPOINT_FILE) {
-                Ok(()) => sim.write_checkpoint(&checkpoint).map_err(|e| e.to_string()),
-                Err(e) => Err(e.to_string()),
-            };
-            if let Err(e) = written {
-                failure = Some(format!("cannot write the checkpoint at {}", at(&e)));
-                break;
-            }
+        if checkpoint_steps.is_some_and(|n| now.step.is_multiple_of(n) || now.finished())
+            && let Err(e) = sim.write_checkpoint(&checkpoint)
+        {
+            failure = Some(format!("cannot write the checkpoint at {}", at(&e)));
+            break;
         }
         if interrupted.load(Ordering::SeqCst) {
             break;
@@ -331,11 +338,7 @@ fn run(
     let now = sim.clock();
     if !now.finished() {
         let resume = if checkpoint_steps.is_some() {
-            let written = output
-                .record(CHECKPOINT_FILE)
-                .map_err(|e| e.to_string())
-                .and_then(|()| sim.write_checkpoint(&checkpoint).map_err(|e| e.to_string()));
-            match written {
+            match sim.write_checkpoint(&checkpoint) {
                 Ok(()) => "; `--resume` carries it on".to_string(),
                 Err(e) => format!("; the checkpoint could not be written: {e}"),
             }

@@ -163,17 +163,6 @@ fn geostatic_stress_needs_gravity_pointing_down() {
     scene.gravity = DVec2::new(0.0, 9.81);
     let message = common::refusal(&scene);
     assert!(message.contains("gravity pointing down"), "{message}");
-    // A free surface below the column's top would put its top in tension.
-    scene.gravity = DVec2::new(0.0, -9.81);
-    scene.bodies[0].initial_stress = Some(mpdem::scene::InitialStress::Geostatic {
-        k0: 0.5,
-        surface: Some(0.5),
-    });
-    let message = common::refusal(&scene);
-    assert!(
-        message.contains("the geostatic surface y = 0.5 lies below the body's highest points"),
-        "{message}"
-    );
 }
 
 #[test]
@@ -260,6 +249,9 @@ fn names_that_become_file_names_may_not_leave_the_output_folder() {
         ("name: Some(\"../../up\")", "starts with '.'"),
         ("name: Some(\"a/b\")", "holds '/'"),
         ("name: Some(\"\")", "got an empty one"),
+        ("name: Some(\"C:up\")", "holds ':'"),
+        ("name: Some(\"nul.run\")", "is a device on Windows"),
+        ("name: Some(\"wave.\")", "ends with '.' or a space"),
     ] {
         assert_error(parse_edited(from, to), line_of(from, to, to), expected);
     }
@@ -284,6 +276,7 @@ fn curves_and_probes_may_not_overwrite_other_files() {
     for (to, expected) in [
         ("name: \"energy\"", "would overwrite the run's own files"),
         ("name: \"probe_qc\"", "would overwrite the run's own files"),
+        ("name: \"Energy\"", "would overwrite the run's own files"),
         ("name: \"../qc\"", "starts with '.'"),
     ] {
         let edited = text.replacen(from, to, 1);
@@ -322,7 +315,7 @@ fn a_point_count_beyond_memory_is_refused_before_the_points_are_made() {
         .matches('\n')
         .count()
         + 1;
-    assert_error(e, line, "up to 6.400e7 points at 8 per cell");
+    assert_error(e, line, "about 6.4");
 }
 
 #[test]

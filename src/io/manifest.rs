@@ -1,11 +1,15 @@
 //! The list of files a run wrote into its output folder (`outputs.txt`), so
 //! that a new run into the same folder removes the earlier run's files,
 //! and only those: frames beyond the new run's last, plots of probes or
-//! curves the new scene no longer has, a checkpoint of another run. Files a
-//! user put into the folder are never touched.
+//! curves the new scene no longer has. Files a user put into the folder are
+//! never touched: only a list whose first line is [`SIGNATURE`] is
+//! followed (an `outputs.txt` of anything else is left alone), and only
+//! the regular files it names inside the folder are removed.
 //!
 //! Each file is appended to the list before it is first written, so the
-//! list is complete also after a run that was stopped or failed.
+//! list is complete also after a run that was stopped or failed. The
+//! checkpoint is not listed: a new run started without `--resume` by
+//! mistake must not destroy the state an earlier run took hours to reach.
 
 use std::collections::BTreeSet;
 use std::fs::{File, OpenOptions};
@@ -14,6 +18,15 @@ use std::path::{Component, Path, PathBuf};
 
 /// The list's file name in the output folder.
 pub const MANIFEST_FILE: &str = "outputs.txt";
+
+/// The list's first line, which marks it as mpdem's.
+pub const SIGNATURE: &str =
+    "# mpdem: the files this run wrote; a new run into this folder removes them";
+
+/// The start of the temporary names files are written under before they
+/// are renamed into place (see `RunOutput`): one left by a run killed while
+/// writing is removed by the next run.
+pub const PARTIAL_PREFIX: &str = ".partial-";
 
 /// The files of a run's output folder, relative to it, as written to
 /// [`MANIFEST_FILE`].
@@ -24,19 +37,38 @@ pub struct OutputManifest {
 }
 
 impl OutputManifest {
-    /// Starts a new run's list in `dir`: removes every file an earlier
-    /// run's list names (and the list), and returns how many were removed.
+    /// Starts a new run's list in `dir` (and in its `vtk/`): removes every
+    /// regular file an earlier run's list names and every temporary file a
+    /// killed run left, then starts the list anew. Returns how many files
+    /// were removed.
     pub fn start(dir: &Path) -> std::io::Result<(Self, usize)> {
-        let mut removed = 0;
-        for name in read_list(dir)? {
-            match std::fs::remove_file(dir.join(&name)) {
-                Ok(()) => removed += 1,
-                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
-                Err(e) => return Err(located(&dir.join(&name), e)),
+        let mut doomed: Vec<PathBuf> = read_list(dir)?.iter().map(|n| dir.join(n)).collect();
+        for folder in [dir.to_path_buf(), dir.join("vtk")] {
+            let Ok(entries) = std::fs::read_dir(&folder) else {
+                continue;
+            };
+            for entry in entries.flatten() {
+                if entry
+                    .file_name()
+                    .to_string_lossy()
+                    .starts_with(PARTIAL_PREFIX)
+                {
+                    doomed.push(entry.path());
+                }
             }
         }
+        let mut removed = 0;
+        for path in doomed {
+            let is_file = std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file());
+            if !is_file {
+                continue;
+            }
+            std::fs::remove_file(&path).map_err(|e| located(&path, e))?;
+            removed += 1;
+        }
         let path = dir.join(MANIFEST_FILE);
-        let file = File::create(&path).map_err(|e| located(&path, e))?;
+        let mut file = File::create(&path).map_err(|e| located(&path, e))?;
+        writeln!(file, "{SIGNATURE}").map_err(|e| located(&path, e))?;
         let manifest = Self {
             dir: dir.to_path_buf(),
             listed: BTreeSet::new(),
@@ -45,15 +77,20 @@ impl OutputManifest {
         Ok((manifest, removed))
     }
 
-    /// Carries on the list of a resumed run in `dir`.
+    /// Carries on the list of a resumed run in `dir` (starting it, for a
+    /// folder written before the list existed).
     pub fn resume(dir: &Path) -> std::io::Result<Self> {
-        let listed = read_list(dir)?.into_iter().collect();
+        let listed: BTreeSet<String> = read_list(dir)?.into_iter().collect();
         let path = dir.join(MANIFEST_FILE);
-        let file = OpenOptions::new()
+        let mut file = OpenOptions::new()
             .create(true)
             .append(true)
             .open(&path)
             .map_err(|e| located(&path, e))?;
+        let empty = file.metadata().map_err(|e| located(&path, e))?.len() == 0;
+        if empty {
+            writeln!(file, "{SIGNATURE}").map_err(|e| located(&path, e))?;
+        }
         Ok(Self {
             dir: dir.to_path_buf(),
             listed,
@@ -73,9 +110,12 @@ impl OutputManifest {
     }
 }
 
-/// The names an earlier run listed in `dir` (none without a list). A line
-/// that is not a plain path inside the folder (absolute, or climbing out of
-/// it with `..`) is skipped: the list may have been edited by hand.
+/// The names an earlier run listed in `dir`: none without a list (or with
+/// an empty one). A list that does not start with [`SIGNATURE`] is not
+/// mpdem's: an error, so that it is neither followed nor overwritten. A line that is
+/// not a plain path inside the folder (absolute, a drive or root prefix, or
+/// climbing out of it with `..`) is skipped: the list may have been edited
+/// by hand.
 fn read_list(dir: &Path) -> std::io::Result<Vec<String>> {
     let path = dir.join(MANIFEST_FILE);
     let file = match File::open(&path) {
@@ -83,8 +123,23 @@ fn read_list(dir: &Path) -> std::io::Result<Vec<String>> {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
         Err(e) => return Err(located(&path, e)),
     };
+    let mut lines = BufReader::new(file).lines();
+    match lines.next() {
+        None => return Ok(Vec::new()),
+        Some(Ok(first)) if first == SIGNATURE => {}
+        Some(Ok(_)) => {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::AlreadyExists,
+                format!(
+                    "{}: this file is not a list of mpdem's outputs, and a run would overwrite it: move it, or choose another output folder",
+                    path.display()
+                ),
+            ));
+        }
+        Some(Err(e)) => return Err(located(&path, e)),
+    }
     let mut names = Vec::new();
-    for line in BufReader::new(file).lines() {
+    for line in lines {
         let line = line.map_err(|e| located(&path, e))?;
         let inside = Path::new(&line)
             .components()
@@ -131,10 +186,23 @@ mod tests {
         std::fs::write(dir.join("vtk/points_00002.vtu"), "x").unwrap();
         drop(resumed);
         let list = std::fs::read_to_string(dir.join(MANIFEST_FILE)).unwrap();
-        assert_eq!(list.lines().count(), 4, "each file listed once: {list}");
+        assert_eq!(list.lines().count(), 1 + 4, "each file listed once: {list}");
+        // A temporary file a killed run left, and a folder named in the list.
+        std::fs::write(dir.join("vtk/.partial-points_00003.vtu"), "half").unwrap();
+        std::fs::create_dir(dir.join("kept")).unwrap();
+        std::fs::write(dir.join("kept/inside.txt"), "the user's").unwrap();
+        OutputManifest::resume(&dir)
+            .unwrap()
+            .record("kept")
+            .unwrap();
 
         let (_, removed) = OutputManifest::start(&dir).unwrap();
-        assert_eq!(removed, 4);
+        assert_eq!(removed, 5);
+        assert!(!dir.join("vtk/.partial-points_00003.vtu").exists());
+        assert!(
+            dir.join("kept/inside.txt").is_file(),
+            "a listed folder was touched"
+        );
         assert!(
             dir.join("mine.csv").is_file(),
             "a file the run did not write was removed"
@@ -142,7 +210,7 @@ mod tests {
         assert!(!dir.join("vtk/points_00001.vtu").exists());
         assert_eq!(
             std::fs::read_to_string(dir.join(MANIFEST_FILE)).unwrap(),
-            ""
+            format!("{SIGNATURE}\n")
         );
         std::fs::remove_dir_all(&dir).ok();
     }
@@ -155,13 +223,37 @@ mod tests {
         let escape = format!("../{}", outside.file_name().unwrap().to_string_lossy());
         std::fs::write(
             dir.join(MANIFEST_FILE),
-            format!("{escape}\n{}\n", outside.display()),
+            format!("{SIGNATURE}\n{escape}\n{}\n", outside.display()),
         )
         .unwrap();
         let (_, removed) = OutputManifest::start(&dir).unwrap();
         assert_eq!(removed, 0);
         assert!(outside.is_file());
         std::fs::remove_file(&outside).ok();
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn a_list_that_is_not_mpdems_is_neither_followed_nor_overwritten() {
+        let dir = folder("foreign");
+        let foreign = "thesis.tex\nfigures/plot.pdf\n";
+        std::fs::write(dir.join(MANIFEST_FILE), foreign).unwrap();
+        std::fs::write(dir.join("thesis.tex"), "the user's").unwrap();
+        let refusal = OutputManifest::start(&dir)
+            .err()
+            .expect("a foreign list was taken over");
+        assert!(
+            refusal
+                .to_string()
+                .contains("not a list of mpdem's outputs"),
+            "{refusal}"
+        );
+        assert!(OutputManifest::resume(&dir).is_err());
+        assert!(dir.join("thesis.tex").is_file());
+        assert_eq!(
+            std::fs::read_to_string(dir.join(MANIFEST_FILE)).unwrap(),
+            foreign
+        );
         std::fs::remove_dir_all(&dir).ok();
     }
 }

@@ -2,7 +2,7 @@
 //! during the run; CSV series and PNG plots at the end.
 
 use super::csv;
-use super::manifest::{OutputManifest, located};
+use super::manifest::{OutputManifest, PARTIAL_PREFIX, located};
 use super::plot::{Series, SeriesStyle, plot_points, plot_series};
 use super::vtk::{
     PointFrame, read_collection, write_collection, write_outlines, write_point_frame,
@@ -41,7 +41,8 @@ pub const PROBE_PLOT_PREFIX: &str = "probe_";
 /// * `snapshot.png` (final state coloured by displacement magnitude),
 ///   `energy.png` and `probe_<name>_{velocity,displacement,stress}.png`;
 /// * `outputs.txt`, the list of these files ([`OutputManifest`]): a new run
-///   into the folder first removes the files an earlier run listed.
+///   into the folder first removes the files an earlier run listed (not
+///   the checkpoint, which this writer does not write).
 ///
 /// Each file is written under a temporary name and renamed, so a run that
 /// fails while writing (a full disk) leaves no half-written file; errors
@@ -76,7 +77,7 @@ impl Folder {
         self.manifest.record(relative)?;
         let path = self.dir.join(relative);
         let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
-        let partial = path.with_file_name(format!(".partial-{}", name.unwrap_or_default()));
+        let partial = path.with_file_name(format!("{PARTIAL_PREFIX}{}", name.unwrap_or_default()));
         let written = writer(&partial).and_then(|()| std::fs::rename(&partial, &path));
         written.map_err(|e| {
             std::fs::remove_file(&partial).ok();
@@ -108,16 +109,17 @@ impl RunOutput {
     /// Creates the folder (and `vtk/` inside it), removes the files an
     /// earlier run into it listed, and writes frame 0. `frame_interval` is
     /// the simulated time between frames (s); `curves` are written at the
-    /// end.
+    /// end. Returns the output and how many of the earlier run's files were
+    /// removed.
     pub fn create(
         dir: &Path,
         frame_interval: Real,
         curves: &[CurveSpec],
         sim: &mut Simulation,
-    ) -> std::io::Result<Self> {
+    ) -> std::io::Result<(Self, usize)> {
         let vtk = dir.join("vtk");
         std::fs::create_dir_all(&vtk).map_err(|e| located(&vtk, e))?;
-        let (manifest, _) = OutputManifest::start(dir)?;
+        let (manifest, removed) = OutputManifest::start(dir)?;
         let frame_every = ((frame_interval / sim.clock().dt).round() as u64).max(1);
         let mut output = Self {
             folder: Folder {
@@ -131,7 +133,7 @@ impl RunOutput {
             curves: curves.to_vec(),
         };
         output.write_frame(sim)?;
-        Ok(output)
+        Ok((output, removed))
     }
 
     /// Carries on the folder of a run that `sim` was resumed from (see
@@ -180,12 +182,6 @@ impl RunOutput {
     /// The output folder.
     pub fn dir(&self) -> &Path {
         &self.folder.dir
-    }
-
-    /// Lists `relative`, a file in the folder that something other than
-    /// this writer puts there (the run's checkpoint), among the run's files.
-    pub fn record(&mut self, relative: &str) -> std::io::Result<()> {
-        self.folder.manifest.record(relative)
     }
 
     /// Call after every step: writes a frame when one is due.

@@ -131,7 +131,9 @@ pub fn write_outlines(path: &Path, outlines: &[Vec<DVec2>], blocks: &[u32]) -> s
 /// so ParaView plays the series with the right times.
 ///
 /// Times are written in round-trip exact scientific notation. Fails with `InvalidInput` if a time
-/// is not finite, or with the I/O error of creating or writing the file.
+/// is not finite, or with the I/O error of creating or writing the file. (A run's output folder
+/// has it written under a temporary name and renamed, so a run stopped while writing keeps the
+/// previous collection, which a resumed run reads.)
 pub fn write_collection(path: &Path, entries: &[(Real, String)]) -> std::io::Result<()> {
     if let Some((time, file)) = entries.iter().find(|(time, _)| !time.is_finite()) {
         return Err(std::io::Error::new(
@@ -139,12 +141,7 @@ pub fn write_collection(path: &Path, entries: &[(Real, String)]) -> std::io::Res
             format!("collection entry {file:?} has non-finite time {time}"),
         ));
     }
-    // Written beside and renamed into place: a run stopped while writing
-    // keeps the previous collection, which a resumed run reads.
-    let mut partial = path.as_os_str().to_owned();
-    partial.push(".partial");
-    let partial = std::path::PathBuf::from(partial);
-    let mut out = BufWriter::new(File::create(&partial)?);
+    let mut out = BufWriter::new(File::create(path)?);
     writeln!(out, r#"<?xml version="1.0"?>"#)?;
     writeln!(out, r#"<VTKFile type="Collection" version="0.1">"#)?;
     writeln!(out, "  <Collection>")?;
@@ -157,9 +154,7 @@ pub fn write_collection(path: &Path, entries: &[(Real, String)]) -> std::io::Res
     }
     writeln!(out, "  </Collection>")?;
     writeln!(out, "</VTKFile>")?;
-    out.flush()?;
-    drop(out);
-    std::fs::rename(&partial, path)
+    out.flush()
 }
 
 /// Reads back a collection written by [`write_collection`]: its (time,

@@ -11,12 +11,23 @@ use std::collections::HashMap;
 /// edge, far below any distance a user means.
 const TOUCH: Real = 1e-6;
 
+/// Smallest overlap of two contact disks, as a fraction of their radii's
+/// sum, that counts: bodies placed exactly touching overlap by round-off
+/// (1e-17 m seen), which is no overlap the user made.
+const ROUND_OFF_OVERLAP: Real = 1e-9;
+
 /// A warning for each body whose points' domains touch an open (`Free`)
-/// grid edge: nothing holds the body there, and its points stop the run as
-/// soon as their shape functions reach past the edge (a body resting on
-/// the grid's bottom edge under gravity does so at its second step).
-/// `bodies` are (name, points) in scene order.
-pub fn free_edge_warnings(grid: &Grid, bodies: &[(&str, &MaterialPoints)]) -> Vec<String> {
+/// grid edge that gravity does not pull it away from: nothing holds the
+/// body there, and the run stops if its points' shape functions reach past
+/// the edge (a body resting on the grid's bottom edge under gravity does so
+/// at its second step). `grid` has the edges the run starts with (the
+/// first stage may set them), `gravity` is the starting gravity, `bodies`
+/// are (name, points) in scene order.
+pub fn free_edge_warnings(
+    grid: &Grid,
+    gravity: DVec2,
+    bodies: &[(&str, &MaterialPoints)],
+) -> Vec<String> {
     let (lo, hi) = (grid.origin, grid.max());
     let touch = TOUCH * grid.cell_size;
     let mut warnings = Vec::new();
@@ -25,36 +36,44 @@ pub fn free_edge_warnings(grid: &Grid, bodies: &[(&str, &MaterialPoints)]) -> Ve
             (DVec2::INFINITY, DVec2::NEG_INFINITY),
             |(low, high), (x, h)| (low.min(*x - *h), high.max(*x + *h)),
         );
+        // Each edge: its name, condition, the body's gap to it, where it
+        // is, and its outward direction (gravity against it pulls the body
+        // off the edge).
         let edges = [
             (
                 "left",
                 grid.edges.left,
                 low.x - lo.x,
                 format!("x = {}", lo.x),
+                -DVec2::X,
             ),
             (
                 "right",
                 grid.edges.right,
                 hi.x - high.x,
                 format!("x = {}", hi.x),
+                DVec2::X,
             ),
             (
                 "bottom",
                 grid.edges.bottom,
                 low.y - lo.y,
                 format!("y = {}", lo.y),
+                -DVec2::Y,
             ),
             (
                 "top",
                 grid.edges.top,
                 hi.y - high.y,
                 format!("y = {}", hi.y),
+                DVec2::Y,
             ),
         ];
-        for (edge, condition, gap, at) in edges {
-            if !condition.is_wall() && gap <= touch {
+        for (edge, condition, gap, at, outward) in edges {
+            let pulled_off = gravity.dot(outward) < 0.0;
+            if !condition.is_wall() && gap <= touch && !pulled_off {
                 warnings.push(format!(
-                    "body '{name}' touches the grid's {edge} edge {at}, which is Free (the default for every edge): nothing holds the body there, and the run stops as soon as a point's shape functions reach past the edge; give it a wall (grid.edges.{edge}: Slip or Fixed) or extend the grid"
+                    "body '{name}' touches the grid's {edge} edge {at}, which is Free (the default for every edge): nothing holds the body there, and the run stops if a point's shape functions reach past the edge; give it a wall (grid.edges.{edge}: Slip or Fixed) or extend the grid"
                 ));
             }
         }
@@ -85,7 +104,8 @@ pub fn body_overlap_warnings(
     warnings
 }
 
-/// The pairs of points of `a` and `b` whose contact disks overlap, and the
+/// The pairs of points of `a` and `b` whose contact disks overlap (beyond
+/// round-off, [`ROUND_OFF_OVERLAP`]), and the
 /// deepest overlap (m): `b`'s points binned in square buckets as wide as
 /// the widest disk diameter, so each of `a`'s points looks at the 3 × 3
 /// buckets around it.
@@ -105,8 +125,9 @@ fn overlapping_disks(a: &MaterialPoints, b: &MaterialPoints) -> (usize, Real) {
         let (kx, ky) = key(*x);
         for (dx, dy) in (-1..=1).flat_map(|dx| (-1..=1).map(move |dy| (dx, dy))) {
             for &j in buckets.get(&(kx + dx, ky + dy)).into_iter().flatten() {
-                let overlap = a.contact_radius[i] + b.contact_radius[j] - x.distance(b.position[j]);
-                if overlap > 0.0 {
+                let reach = a.contact_radius[i] + b.contact_radius[j];
+                let overlap = reach - x.distance(b.position[j]);
+                if overlap > ROUND_OFF_OVERLAP * reach {
                     pairs += 1;
                     deepest = Real::max(deepest, overlap);
                 }
@@ -150,19 +171,30 @@ mod tests {
             cells: [10, 10],
             edges: Default::default(),
         };
+        let down = DVec2::new(0.0, -9.81);
         let resting = row(DVec2::new(2.0, 0.5), 3);
         let lifted = row(DVec2::new(2.0, 0.5 + 1e-3), 3);
-        let warnings = free_edge_warnings(&grid, &[("slab", &resting), ("lifted", &lifted)]);
+        let bodies = [("slab", &resting), ("lifted", &lifted)];
+        let warnings = free_edge_warnings(&grid, down, &bodies);
         assert_eq!(warnings.len(), 1, "{warnings:?}");
         assert!(warnings[0].contains("body 'slab' touches the grid's bottom edge y = 0"));
+        // Hanging from the top edge: gravity pulls it off, unless it points up.
+        let hanging = row(DVec2::new(2.0, 9.5), 3);
+        assert!(free_edge_warnings(&grid, down, &[("hanging", &hanging)]).is_empty());
+        let up = free_edge_warnings(&grid, -down, &[("hanging", &hanging)]);
+        assert!(
+            up[0].contains("body 'hanging' touches the grid's top edge y = 10"),
+            "{up:?}"
+        );
         grid.edges.bottom = EdgeCondition::Slip;
-        assert!(free_edge_warnings(&grid, &[("slab", &resting)]).is_empty());
+        assert!(free_edge_warnings(&grid, down, &[("slab", &resting)]).is_empty());
     }
 
     #[test]
     fn overlapping_bodies_under_a_law_are_named_with_their_deepest_overlap() {
         let below = row(DVec2::ZERO, 10);
-        let touching = row(DVec2::new(0.0, 1.0), 10);
+        // Touching, up to round-off (an overlap of 1e-15).
+        let touching = row(DVec2::new(0.0, 1.0 - 1e-15), 10);
         let into = row(DVec2::new(0.25, 0.75), 10);
         let law = |a, b| BodyPairLaw {
             a,

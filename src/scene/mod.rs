@@ -297,7 +297,7 @@ pub enum InitialStress {
         #[serde(deserialize_with = "rules::de_non_negative")]
         k0: Real,
         /// Height of the free surface (m). Default: the top of the body, a body
-        /// with nothing resting on it.
+        /// with nothing resting on it. Points above it start stress-free.
         #[serde(default)]
         surface: Option<Real>,
     },

@@ -83,23 +83,46 @@ pub fn xpic_order(value: u32) -> Result<u32, String> {
     }
 }
 
+/// Characters no file name may hold on one of the systems a scene may be
+/// run on: path separators, and those Windows reserves.
+const NOT_IN_FILE_NAMES: [char; 9] = ['/', '\\', ':', '*', '?', '"', '<', '>', '|'];
+
+/// Names Windows reserves for devices, whatever follows a dot.
+const DEVICE_NAMES: [&str; 22] = [
+    "con", "prn", "aux", "nul", "com1", "com2", "com3", "com4", "com5", "com6", "com7", "com8",
+    "com9", "lpt1", "lpt2", "lpt3", "lpt4", "lpt5", "lpt6", "lpt7", "lpt8", "lpt9",
+];
+
 /// A name that becomes a file or folder name in the output (the scene's
-/// folder, a curve's files): not empty, no path separator or control
-/// character, and not starting with `.`, so it can never climb out of the
-/// output folder (`..`), name the folder itself (`.`) or hide a file.
+/// folder, a curve's files), on any system: not empty, without path
+/// separators, Windows' reserved characters (`: * ? " < > |`) or control
+/// characters, not starting with `.` (so it can never climb out of the
+/// output folder with `..`, name the folder itself or hide a file), not
+/// ending with `.` or a space, and not a Windows device name (`CON`,
+/// `NUL`, `COM1`, ...).
 pub fn file_name(name: &str) -> Result<(), String> {
+    const WHY: &str = "names become file names";
+    let device = name.split('.').next().unwrap_or("").to_ascii_lowercase();
     if name.is_empty() {
         Err("expected a name, got an empty one".into())
     } else if name.starts_with('.') {
         Err(format!(
-            "the name '{name}' starts with '.': names become file names, and such a file would be hidden or name a folder ('.', '..')"
+            "the name '{name}' starts with '.': {WHY}, and such a file would be hidden or name a folder ('.', '..')"
         ))
     } else if let Some(c) = name
         .chars()
-        .find(|c| *c == '/' || *c == '\\' || c.is_control())
+        .find(|c| NOT_IN_FILE_NAMES.contains(c) || c.is_control())
     {
         Err(format!(
-            "the name '{name}' holds {c:?}: names become file names, which may not hold path separators or control characters"
+            "the name '{name}' holds {c:?}: {WHY}, which may not hold path separators, any of : * ? \" < > | or control characters"
+        ))
+    } else if name.ends_with(['.', ' ']) {
+        Err(format!(
+            "the name '{name}' ends with '.' or a space: {WHY}, and Windows drops those"
+        ))
+    } else if DEVICE_NAMES.contains(&device.as_str()) {
+        Err(format!(
+            "the name '{name}' is a device on Windows: {WHY}; choose another"
         ))
     } else {
         Ok(())

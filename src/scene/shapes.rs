@@ -3,6 +3,7 @@
 use super::point_file::ListedPoint;
 use crate::math::{DVec2, Real, check_convex_polygon};
 use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
 
 /// The outline of a body. Points are placed at the sub-cell centres of the
 /// grid cells (points_per_cell × points_per_cell per cell) that fall inside,
@@ -113,6 +114,38 @@ impl Shape {
             }
         }
         Ok(())
+    }
+
+    /// About how many points a lattice of spacing `spacing` puts in the
+    /// shape, without making them: area / spacing² plus one row along the
+    /// outline (perimeter / spacing) and one; a point list's length.
+    pub fn point_estimate(&self, spacing: Real) -> Real {
+        let (area, perimeter) = match self {
+            Self::Rectangle { min, max } => {
+                let size = *max - *min;
+                (size.x * size.y, 2.0 * (size.x + size.y))
+            }
+            Self::Polygon { vertices } => {
+                let edges =
+                    (0..vertices.len()).map(|k| (vertices[k], vertices[(k + 1) % vertices.len()]));
+                let twice_area: Real = edges.clone().map(|(a, b)| a.perp_dot(b)).sum();
+                (
+                    0.5 * twice_area.abs(),
+                    edges.map(|(a, b)| a.distance(b)).sum(),
+                )
+            }
+            Self::Disk { radius, .. } => (PI * radius * radius, 2.0 * PI * radius),
+            Self::Ring {
+                inner_radius,
+                outer_radius,
+                ..
+            } => (
+                PI * (outer_radius * outer_radius - inner_radius * inner_radius),
+                2.0 * PI * (outer_radius + inner_radius),
+            ),
+            Self::Points { points, .. } => return points.len() as Real,
+        };
+        area / (spacing * spacing) + perimeter / spacing + 1.0
     }
 
     /// Lower-left and upper-right corners of the bounding box.

@@ -190,14 +190,20 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         }
     }
     laws.sort_unstable_by_key(|l| (l.a, l.b));
-    let placed: Vec<(&str, &MaterialPoints)> = scene
+    // Every body was spawned with its points just above.
+    let placed: Option<Vec<(&str, &MaterialPoints)>> = scene
         .bodies
         .iter()
         .zip(&bodies)
-        .filter_map(|(spec, &e)| Some((spec.name.as_str(), world.get::<MaterialPoints>(e)?)))
+        .map(|(spec, &e)| Some((spec.name.as_str(), world.get::<MaterialPoints>(e)?)))
         .collect();
-    if placed.len() == bodies.len() {
-        warnings.extend(free_edge_warnings(world.resource::<Grid>(), &placed));
+    if let Some(placed) = placed {
+        // The edges and gravity the run starts with: the first stage's, if set.
+        let first = scene.stages.first();
+        let mut start = world.resource::<Grid>().clone();
+        start.edges = first.and_then(|s| s.edges).unwrap_or(start.edges);
+        let gravity = first.and_then(|s| s.gravity).unwrap_or(scene.gravity);
+        warnings.extend(free_edge_warnings(&start, gravity, &placed));
         warnings.extend(body_overlap_warnings(&placed, &laws));
     }
     // Room for every sample, as for the probes: recording never allocates.

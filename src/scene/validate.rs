@@ -181,21 +181,26 @@ impl Scene {
             b.shape
                 .check()
                 .map_err(|e| fail("shape", format!("body '{}': {e}", b.name)))?;
-            // Counted from the shape's bounding box before the points are
-            // made: an overestimate for shapes that do not fill it.
-            let (low, high) = b.shape.bounds();
-            let lattice = (high - low) / (grid.cell_size / Real::from(b.points_per_cell));
-            let estimate = match &b.shape {
-                Shape::Points { points, .. } => points.len() as Real,
-                _ => (lattice.x.ceil().max(1.0)) * (lattice.y.ceil().max(1.0)),
-            };
-            total_points += estimate;
-            if total_points > MAX_POINTS as Real {
+            // Estimated from the shape before its points are made.
+            let estimate = b
+                .shape
+                .point_estimate(grid.cell_size / Real::from(b.points_per_cell));
+            if total_points + estimate > MAX_POINTS as Real {
                 return Err(fail(
                     "shape",
                     format!(
-                        "body '{}': up to {estimate:.3e} points at {} per cell of {} m, {total_points:.3e} with the bodies before it: more than the {MAX_POINTS} a scene may hold",
-                        b.name, b.points_per_cell, grid.cell_size
+                        "body '{}': about {estimate:.3e} points at {} per cell of {} m{}: more than the {MAX_POINTS} a scene may hold",
+                        b.name,
+                        b.points_per_cell,
+                        grid.cell_size,
+                        if total_points > 0.0 {
+                            format!(
+                                ", {:.3e} with the bodies before it",
+                                total_points + estimate
+                            )
+                        } else {
+                            String::new()
+                        }
                     ),
                 ));
             }
@@ -237,6 +242,7 @@ impl Scene {
                     ),
                 ));
             }
+            total_points += points.len() as Real;
             if points.is_empty() {
                 return Err(fail(
                     "shape",
@@ -267,19 +273,6 @@ impl Scene {
                     let message = format!(
                         "body '{}': geostatic stress needs gravity pointing down (g_y < 0), got {}",
                         b.name, self.gravity
-                    );
-                    return Err(fail("initial_stress", message));
-                }
-                let top = points
-                    .iter()
-                    .map(|p| p.position.y)
-                    .fold(Real::NEG_INFINITY, Real::max);
-                if let Some(s) = *surface
-                    && s < top
-                {
-                    let message = format!(
-                        "body '{}': the geostatic surface y = {s} lies below the body's highest points (y = {top}): those would start in tension; give the surface at or above them, or leave it out (the body's top)",
-                        b.name
                     );
                     return Err(fail("initial_stress", message));
                 }
@@ -386,7 +379,9 @@ impl Scene {
                     format!("probe name '{}' is used twice", p.name),
                 ));
             }
-            if let Some(other) = probe_files.insert(rules::file_safe(&p.name), p.name.as_str()) {
+            // Compared without case: macOS and Windows file systems ignore it.
+            let file = rules::file_safe(&p.name).to_ascii_lowercase();
+            if let Some(other) = probe_files.insert(file, p.name.as_str()) {
                 return Err(invalid(
                     &at,
                     format!(
@@ -438,12 +433,14 @@ impl Scene {
                 )
             };
             rules::file_name(&curve.name).map_err(fail_name)?;
-            if !curve_names.insert(curve.name.as_str()) {
-                return Err(fail_name("the name is used twice".into()));
+            // Compared without case: macOS and Windows file systems ignore it.
+            let file = curve.name.to_lowercase();
+            if !curve_names.insert(file.clone()) {
+                return Err(fail_name(
+                    "the name is used twice (names are files: letter case does not tell them apart)".into(),
+                ));
             }
-            if RUN_FILE_STEMS.contains(&curve.name.as_str())
-                || curve.name.starts_with(PROBE_PLOT_PREFIX)
-            {
+            if RUN_FILE_STEMS.contains(&file.as_str()) || file.starts_with(PROBE_PLOT_PREFIX) {
                 return Err(fail_name(format!(
                     "the name would overwrite the run's own files ({RUN_FILE_STEMS:?}, {PROBE_PLOT_PREFIX}*); choose another"
                 )));
