@@ -142,6 +142,10 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        Err(message) if message.starts_with(STOPPED_BY_CTRL_C) => {
+            eprintln!("{message}");
+            ExitCode::from(130)
+        }
         Err(message) => {
             eprintln!("error: {message}");
             ExitCode::FAILURE
@@ -189,6 +193,10 @@ fn check(path: &Path) -> Result<(), String> {
     );
     Ok(())
 }
+
+/// How the message of a run stopped by Ctrl-C starts; the process then
+/// exits with status 130, as a shell reports an interrupted command.
+const STOPPED_BY_CTRL_C: &str = "stopped by Ctrl-C";
 
 /// The checkpoint's file name in the output folder.
 const CHECKPOINT_FILE: &str = "checkpoint.bin";
@@ -346,7 +354,7 @@ fn run(
             String::new()
         };
         return Err(format!(
-            "stopped by Ctrl-C at step {} (t = {:.6e} s); results up to there are in {}{resume}",
+            "{STOPPED_BY_CTRL_C} at step {} (t = {:.6e} s); results up to there are in {}{resume}",
             now.step,
             now.time,
             dir.display()

@@ -330,7 +330,7 @@ fn ctrl_c_stops_the_run_after_its_step_and_writes_its_results_and_a_checkpoint()
     assert!(signal.success());
     let result = child.wait_with_output().expect("mpdem ends");
     let stderr = String::from_utf8_lossy(&result.stderr);
-    assert!(!result.status.success(), "{stderr}");
+    assert_eq!(result.status.code(), Some(130), "{stderr}");
     assert!(
         stderr.contains("stopped by Ctrl-C at step") && stderr.contains("`--resume` carries it on"),
         "{stderr}"
