@@ -156,7 +156,7 @@ pub fn plot_points(
         value_label,
         positions,
         values,
-        marker_pixels: (marker_size * pixels_per_unit).round().clamp(1.0, 2000.0) as i32,
+        marker_pixels: (marker_size * pixels_per_unit).ceil().clamp(1.0, 2000.0) as i32,
         x_range: center.x - half.x..center.x + half.x,
         y_range: center.y - half.y..center.y + half.y,
         outlines,
@@ -309,8 +309,8 @@ fn draw_snapshot<DB: DrawingBackend>(
     chart
         .configure_mesh()
         .disable_mesh()
-        .x_desc("x")
-        .y_desc("y")
+        .x_desc("x (m)")
+        .y_desc("y (m)")
         .label_style((FONT, 15))
         .axis_desc_style((FONT, 17))
         .draw()?;
