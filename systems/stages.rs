@@ -151,8 +151,9 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
     if let Some(g) = spec.gravity {
         world.resource_mut::<Gravity>().0 = g;
     }
-    if let Some(edges) = spec.edges {
-        world.resource_mut::<Grid>().edges = edges;
+    if let Some(changes) = spec.edges {
+        let mut grid = world.resource_mut::<Grid>();
+        grid.edges = changes.apply(grid.edges);
     }
     for name in &spec.remove_blocks {
         if let Some(entity) = block_named(world, name) {

@@ -75,8 +75,12 @@ fn stage_changes_take_effect_on_entry() {
     scene.stages[0].end = mpdem::scene::StageEnd::Duration(0.01);
     scene.stages[1].end = mpdem::scene::StageEnd::Duration(0.01);
     scene.stages[1].tractions.clear();
-    scene.stages[1].edges = Some(mpdem::resources::EdgeConditions {
-        bottom: mpdem::resources::EdgeCondition::Fixed,
+    // Only the side walls change: the bottom stays Fixed and the top Free,
+    // as the scene set them.
+    use mpdem::resources::EdgeCondition::{Fixed, Free};
+    scene.stages[1].edges = Some(mpdem::scene::EdgeChanges {
+        left: Some(Free),
+        right: Some(Free),
         ..Default::default()
     });
     scene.stages[1].gravity = Some(DVec2::new(5.0, -9.81));
@@ -86,6 +90,11 @@ fn stage_changes_take_effect_on_entry() {
     sim.run().expect("run");
     let world = sim.world();
     assert_eq!(world.resource::<Settings>().pic_fraction, 0.25);
+    let edges = world.resource::<mpdem::resources::Grid>().edges;
+    assert_eq!(
+        [edges.left, edges.right, edges.bottom, edges.top],
+        [Free, Free, Fixed, Free]
+    );
     assert_eq!(
         world.resource::<mpdem::resources::Gravity>().0,
         DVec2::new(5.0, -9.81)
@@ -150,5 +159,31 @@ fn blocks_are_removed_added_and_moved_only_while_they_are_there() {
     assert!(
         message.contains("block 'pile' is there already: an earlier stage added it"),
         "{message}"
+    );
+}
+
+#[test]
+fn a_stage_writes_only_the_edges_it_changes() {
+    let text = std::fs::read_to_string(common::scene_path("geostatic_column.ron")).unwrap();
+    let (from, to) = (
+        "name: \"surcharge\",",
+        "name: \"surcharge\", edges: Some((left: Free)),",
+    );
+    assert!(text.contains(from), "fixture text not in the scene");
+    let scene =
+        mpdem::scene::Scene::parse(&text.replacen(from, to, 1), std::path::Path::new("e.ron"))
+            .unwrap_or_else(|e| panic!("{e}"));
+    let changes = scene.stages[1].edges.expect("edges parsed");
+    assert_eq!(
+        changes,
+        mpdem::scene::EdgeChanges {
+            left: Some(mpdem::resources::EdgeCondition::Free),
+            ..Default::default()
+        }
+    );
+    let after = changes.apply(scene.grid.edges);
+    assert_eq!(
+        (after.right, after.bottom),
+        (scene.grid.edges.right, scene.grid.edges.bottom)
     );
 }

@@ -132,7 +132,7 @@ impl Grid {
             .min_by(|a, b| a.2.total_cmp(&b.2));
         match nearest {
             Some((name, _, distance, at)) => format!(
-                "{position} lies {distance:.3e} m from the grid's {name} edge {at}, and the point's shape functions (domain half-size {half_size}) reach past it; that edge is Free (the default for every edge), with no nodes beyond it: give it a wall (grid.edges.{name}: Slip or Fixed) or extend the grid"
+                "{position} lies {distance:.3e} m from the grid's {name} edge {at}, and the point's shape functions (domain half-size {half_size}) reach past it; that edge is Free (the default, unless grid.edges or a stage's edges set it), with no nodes beyond it: give it a wall (Slip or Fixed) or extend the grid"
             ),
             None => format!("{position}: the point's shape functions reach past the grid"),
         }

@@ -21,7 +21,7 @@ pub use point_file::ListedPoint;
 pub use shapes::Shape;
 pub use spawn::spawn_scene;
 pub use spawn_blocks::spawn_block;
-pub use stages::{BlockVelocity, Side, StageEnd, StageSpec, SurfaceTraction};
+pub use stages::{BlockVelocity, EdgeChanges, Side, StageEnd, StageSpec, SurfaceTraction};
 pub use velocity_field::VelocityField;
 
 use crate::components::{BodyAcceleration, RegionConstraint, RigidVelocity};

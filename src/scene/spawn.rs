@@ -201,7 +201,9 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         // The edges and gravity the run starts with: the first stage's, if set.
         let first = scene.stages.first();
         let mut start = world.resource::<Grid>().clone();
-        start.edges = first.and_then(|s| s.edges).unwrap_or(start.edges);
+        start.edges = first
+            .and_then(|s| s.edges)
+            .map_or(start.edges, |c| c.apply(start.edges));
         let gravity = first.and_then(|s| s.gravity).unwrap_or(scene.gravity);
         warnings.extend(free_edge_warnings(&start, gravity, &placed));
         warnings.extend(body_overlap_warnings(&placed, &laws));

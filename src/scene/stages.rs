@@ -5,8 +5,8 @@
 use super::rules;
 use crate::components::RigidVelocity;
 use crate::math::{DVec2, Real};
-use crate::resources::EdgeConditions;
-use serde::{Deserialize, Serialize};
+use crate::resources::{EdgeCondition, EdgeConditions};
+use serde::{Deserialize, Deserializer, Serialize};
 
 /// One stage. Every change is optional: what a stage does not set stays as
 /// the previous stage (or the scene) left it.
@@ -29,10 +29,11 @@ pub struct StageSpec {
     /// Gravity from this stage on (m/s²).
     #[serde(default)]
     pub gravity: Option<DVec2>,
-    /// Grid edge conditions from this stage on (all four edges; e.g. a
-    /// wall removed by setting its edge `Free`).
+    /// Grid edge conditions from this stage on: the edges given change
+    /// (e.g. a wall removed by setting its edge `Free`), the others keep
+    /// theirs.
     #[serde(default)]
-    pub edges: Option<EdgeConditions>,
+    pub edges: Option<EdgeChanges>,
     /// Blocks (by name) that leave the scene on entry.
     #[serde(default)]
     pub remove_blocks: Vec<String>,
@@ -47,6 +48,44 @@ pub struct StageSpec {
     /// the same body and side.
     #[serde(default)]
     pub tractions: Vec<SurfaceTraction>,
+}
+
+/// A stage's changes to the grid's edge conditions, written like
+/// `GridSpec::edges` (e.g. `(left: Free)`): each edge given is set, each
+/// left out keeps the condition it had.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EdgeChanges {
+    /// Edge x = x_min.
+    #[serde(default, deserialize_with = "some_edge")]
+    pub left: Option<EdgeCondition>,
+    /// Edge x = x_max.
+    #[serde(default, deserialize_with = "some_edge")]
+    pub right: Option<EdgeCondition>,
+    /// Edge y = y_min.
+    #[serde(default, deserialize_with = "some_edge")]
+    pub bottom: Option<EdgeCondition>,
+    /// Edge y = y_max.
+    #[serde(default, deserialize_with = "some_edge")]
+    pub top: Option<EdgeCondition>,
+}
+
+impl EdgeChanges {
+    /// `edges` with these changes made.
+    pub fn apply(&self, edges: EdgeConditions) -> EdgeConditions {
+        EdgeConditions {
+            left: self.left.unwrap_or(edges.left),
+            right: self.right.unwrap_or(edges.right),
+            bottom: self.bottom.unwrap_or(edges.bottom),
+            top: self.top.unwrap_or(edges.top),
+        }
+    }
+}
+
+/// An edge condition written without `Some` (absent: `None`, with
+/// `#[serde(default)]`).
+fn some_edge<'de, D: Deserializer<'de>>(d: D) -> Result<Option<EdgeCondition>, D::Error> {
+    EdgeCondition::deserialize(d).map(Some)
 }
 
 /// When a stage ends.
