@@ -253,7 +253,6 @@ fn run(
         ));
     }
     let frame_interval = scene.output.frame_interval_or_default(clock.end);
-    let curves = &scene.output.curves;
     let mut output = if checkpoints.resume {
         eprintln!(
             "resuming at step {} (t = {:.6e} s) from {}",
@@ -261,10 +260,10 @@ fn run(
             clock.time,
             checkpoint.display()
         );
-        RunOutput::resume(&dir, frame_interval, curves, &sim)
+        RunOutput::resume(&dir, frame_interval, &scene, &sim)
             .map_err(|e| format!("{}: cannot carry on the output: {e}", dir.display()))?
     } else {
-        let (output, removed) = RunOutput::create(&dir, frame_interval, curves, &mut sim)
+        let (output, removed) = RunOutput::create(&dir, frame_interval, &scene, &mut sim)
             .map_err(|e| format!("cannot write the output: {e}"))?;
         if removed > 0 {
             eprintln!(

@@ -10,8 +10,8 @@ use super::vtk::{
 use crate::components::{BlockId, BlockOutline, BodyIndex, MaterialPoints, Pose};
 use crate::math::{DVec2, Real};
 use crate::resources::{BlockLog, BodyPairLog, EnergyLog, Grid, Probes, StageLog};
-use crate::scene::CurveSpec;
 use crate::scene::rules::file_safe;
+use crate::scene::{CurveSpec, Scene};
 use crate::simulation::Simulation;
 use std::path::{Path, PathBuf};
 
@@ -53,8 +53,10 @@ pub struct RunOutput {
     frames: Vec<(Real, String)>,
     block_frames: Vec<(Real, String)>,
     buffers: FrameBuffers,
-    /// Reaction–displacement curves to write at the end.
-    curves: Vec<CurveSpec>,
+    /// Reaction–displacement curves to write at the end, each with the
+    /// frame origin its block is placed at (where its displacement counts
+    /// from; the block's first sample comes a probe interval later).
+    curves: Vec<(CurveSpec, DVec2)>,
 }
 
 /// The output folder and the list of the files written into it.
@@ -108,13 +110,13 @@ type CurveSample = (Real, Real, Real);
 impl RunOutput {
     /// Creates the folder (and `vtk/` inside it), removes the files an
     /// earlier run into it listed, and writes frame 0. `frame_interval` is
-    /// the simulated time between frames (s); `curves` are written at the
+    /// the simulated time between frames (s); the `scene`'s curves are written at the
     /// end. Returns the output and how many of the earlier run's files were
     /// removed.
     pub fn create(
         dir: &Path,
         frame_interval: Real,
-        curves: &[CurveSpec],
+        scene: &Scene,
         sim: &mut Simulation,
     ) -> std::io::Result<(Self, usize)> {
         let vtk = dir.join("vtk");
@@ -130,7 +132,7 @@ impl RunOutput {
             frames: Vec::new(),
             block_frames: Vec::new(),
             buffers: FrameBuffers::default(),
-            curves: curves.to_vec(),
+            curves: placed_curves(scene),
         };
         output.write_frame(sim)?;
         Ok((output, removed))
@@ -146,7 +148,7 @@ impl RunOutput {
     pub fn resume(
         dir: &Path,
         frame_interval: Real,
-        curves: &[CurveSpec],
+        scene: &Scene,
         sim: &Simulation,
     ) -> std::io::Result<Self> {
         let clock = sim.clock();
@@ -175,7 +177,7 @@ impl RunOutput {
                 Vec::new()
             },
             buffers: FrameBuffers::default(),
-            curves: curves.to_vec(),
+            curves: placed_curves(scene),
         })
     }
 
@@ -225,8 +227,8 @@ impl RunOutput {
             self.folder
                 .write_file("stages.csv", |path| csv::write_stages(path, stages))?;
         }
-        for curve in &self.curves {
-            write_curve(&mut self.folder, curve, blocks)?;
+        for (curve, start) in &self.curves {
+            write_curve(&mut self.folder, curve, *start, blocks)?;
         }
         self.plot_energy(energy)?;
         self.plot_probes(probes)?;
@@ -399,9 +401,27 @@ impl RunOutput {
     }
 }
 
+/// The scene's curves, each with the frame origin its block is placed at.
+fn placed_curves(scene: &Scene) -> Vec<(CurveSpec, DVec2)> {
+    scene
+        .output
+        .curves
+        .iter()
+        .map(|curve| {
+            let block = scene.blocks.iter().find(|b| b.name == curve.block);
+            (curve.clone(), block.map_or(DVec2::ZERO, |b| b.position))
+        })
+        .collect()
+}
+
 /// Writes `<name>.csv` (`time,displacement,resistance`, scaled) and
 /// `<name>.png` for one curve.
-fn write_curve(folder: &mut Folder, curve: &CurveSpec, log: &BlockLog) -> std::io::Result<()> {
+fn write_curve(
+    folder: &mut Folder,
+    curve: &CurveSpec,
+    start: DVec2,
+    log: &BlockLog,
+) -> std::io::Result<()> {
     let Some(block) = log.names.iter().position(|n| *n == curve.block) else {
         return Ok(());
     };
@@ -411,9 +431,9 @@ fn write_curve(folder: &mut Folder, curve: &CurveSpec, log: &BlockLog) -> std::i
         .iter()
         .filter(|s| s.block as usize == block)
         .collect();
-    let Some(first) = samples.first() else {
+    if samples.is_empty() {
         return Ok(());
-    };
+    }
     let force_at = |time: Real, whole: DVec2| match curve.part {
         None => whole,
         Some(k) => log
@@ -427,7 +447,7 @@ fn write_curve(folder: &mut Folder, curve: &CurveSpec, log: &BlockLog) -> std::i
         .map(|s| {
             (
                 s.time,
-                (s.origin - first.origin).dot(d) * curve.displacement_scale,
+                (s.origin - start).dot(d) * curve.displacement_scale,
                 -force_at(s.time, s.force).dot(d) * curve.force_scale,
             )
         })
@@ -504,3 +524,59 @@ type ProbeCurve = (&'static str, fn(&crate::resources::ProbeSample) -> Real);
 
 /// One PNG per probe: file suffix, axis label and three curves.
 type ProbePlot = (&'static str, &'static str, [ProbeCurve; 3]);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::resources::BlockSample;
+
+    /// A punch placed at y = 0.4 and driven down at 0.05 m/s from t = 0:
+    /// its first sample, a probe interval in, has moved 0.5 mm already,
+    /// and the curve says so (it counted from the first sample before).
+    #[test]
+    fn a_curve_counts_the_displacement_from_where_its_block_was_placed() {
+        let dir = std::env::temp_dir().join(format!("mpdem-curve-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (manifest, _) = OutputManifest::start(&dir).unwrap();
+        let mut folder = Folder {
+            dir: dir.clone(),
+            manifest,
+        };
+        let sample = |time: Real, y: Real| BlockSample {
+            block: 0,
+            time,
+            force: DVec2::new(0.0, 100.0 * time),
+            torque: 0.0,
+            origin: DVec2::new(0.5, y),
+            angle: 0.0,
+            velocity: DVec2::new(0.0, -0.05),
+            angular: 0.0,
+        };
+        let log = BlockLog {
+            names: vec!["punch".into()],
+            samples: vec![sample(0.01, 0.3995), sample(0.02, 0.399)],
+            parts: Vec::new(),
+        };
+        let curve = CurveSpec {
+            name: "qc".into(),
+            block: "punch".into(),
+            part: None,
+            direction: DVec2::new(0.0, -1.0),
+            force_scale: 1.0,
+            displacement_scale: 1.0,
+            force_label: None,
+            displacement_label: None,
+        };
+        write_curve(&mut folder, &curve, DVec2::new(0.5, 0.4), &log).unwrap();
+        let text = std::fs::read_to_string(dir.join("qc.csv")).unwrap();
+        let displacements: Vec<Real> = text
+            .lines()
+            .skip(1)
+            .map(|row| row.split(',').nth(1).unwrap().parse().unwrap())
+            .collect();
+        assert_eq!(displacements.len(), 2);
+        assert!((displacements[0] - 5e-4).abs() < 1e-12, "{text}");
+        assert!((displacements[1] - 1e-3).abs() < 1e-12, "{text}");
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}
