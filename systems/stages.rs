@@ -1,7 +1,9 @@
 //! The scene's stages: entering one (its changes to the setup) and ending
 //! it (after its duration, or once the model has settled).
 
-use crate::components::{BlockId, BodyName, MaterialPoints, RigidVelocity, bodies_in_scene_order};
+use crate::components::{
+    BlockId, BodyName, MaterialPoints, RigidMass, RigidMotion, RigidVelocity, bodies_in_scene_order,
+};
 use crate::math::{DVec2, Real};
 use crate::resources::{
     AppliedLoad, Clock, Gravity, Grid, Settings, StageEndReason, StageLog, StagePlan, StageRecord,
@@ -11,9 +13,10 @@ use bevy_ecs::prelude::*;
 use std::collections::BTreeMap;
 
 /// After each step: ends the current stage when its duration has elapsed,
-/// its settling condition holds (kinetic energy down to `ratio` of the
-/// stage's peak, or no stress component changed by `below` in the step,
-/// once some step of the stage changed one by more) or
+/// its settling condition holds (kinetic energy of the bodies and the
+/// dynamic blocks down to `ratio` of the stage's peak, once something has
+/// moved, or no stress component changed by `below` in the step, once some
+/// step of the stage changed one by more) or
 /// its `max_time` has passed (a warning), then enters the next stage; after
 /// the last one the run ends (the clock's end is set to now). Reaching the
 /// scene's `time.end` first ends the stage with a warning. Does nothing in a
@@ -49,7 +52,7 @@ fn stage_end(world: &mut World, plan: &mut StagePlan) -> Option<StageEndReason> 
             false
         }
         StageEnd::KineticEnergyRatio { ratio, .. } => {
-            let kinetic: Real = bodies
+            let kinetic = bodies
                 .iter()
                 .filter_map(|e| world.get::<MaterialPoints>(*e))
                 .map(|p| {
@@ -59,9 +62,12 @@ fn stage_end(world: &mut World, plan: &mut StagePlan) -> Option<StageEndReason> 
                         .map(|(m, v)| 0.5 * m * v.length_squared())
                         .sum::<Real>()
                 })
-                .sum();
+                .sum::<Real>()
+                + dynamic_blocks_kinetic_energy(world, plan.scene.blocks.len());
             plan.progress.peak_kinetic = plan.progress.peak_kinetic.max(kinetic);
-            kinetic <= ratio * plan.progress.peak_kinetic
+            // Nothing has moved yet (a stage that starts at rest): the
+            // model has not settled, it has not begun.
+            plan.progress.peak_kinetic > 0.0 && kinetic <= ratio * plan.progress.peak_kinetic
         }
         StageEnd::StressChange { below, .. } => {
             let mut largest: Real = 0.0;
@@ -93,6 +99,28 @@ fn stage_end(world: &mut World, plan: &mut StagePlan) -> Option<StageEndReason> 
     } else {
         None
     }
+}
+
+/// The kinetic energy of the dynamic blocks of the scene's `blocks`
+/// (present or not), ½ m |v|² + ½ I ω², summed in scene order whatever
+/// order the world holds them in (a resumed run spawns them in another),
+/// without allocating: a scan per block, and blocks are few. Kinematic
+/// blocks move as they are told: their motion is no sign of the model
+/// settling.
+fn dynamic_blocks_kinetic_energy(world: &mut World, blocks: usize) -> Real {
+    let mut query = world.query::<(&BlockId, &RigidMotion, &RigidMass, &RigidVelocity)>();
+    let mut total = 0.0;
+    for k in 0..blocks as u32 {
+        let energy = query
+            .iter(world)
+            .find(|(id, motion, ..)| id.index == k && **motion == RigidMotion::Dynamic)
+            .map_or(0.0, |(_, _, mass, v)| {
+                0.5 * mass.mass * v.linear.length_squared()
+                    + 0.5 * mass.inertia * v.angular * v.angular
+            });
+        total += energy;
+    }
+    total
 }
 
 /// Records the end of the current stage and enters the next, or ends the run.

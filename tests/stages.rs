@@ -187,3 +187,21 @@ fn a_stage_writes_only_the_edges_it_changes() {
         (scene.grid.edges.right, scene.grid.edges.bottom)
     );
 }
+
+#[test]
+fn a_kinetic_energy_stage_that_starts_at_rest_waits_for_motion() {
+    // Without gravity nothing moves: the stage does not end on its first
+    // step (its energy, 0, is "1e-3 of its peak", 0), but at max_time.
+    let mut scene = common::load_scene("geostatic_column.ron");
+    scene.gravity = DVec2::ZERO;
+    scene.stages.truncate(1);
+    scene.stages[0].end = mpdem::scene::StageEnd::KineticEnergyRatio {
+        ratio: 1e-3,
+        max_time: 0.01,
+    };
+    let mut sim = Simulation::from_scene(&scene).expect("scene");
+    sim.run().expect("run");
+    let log = sim.world().resource::<StageLog>();
+    assert_eq!(log.records[0].reason, StageEndReason::MaxTime);
+    assert!((log.records[0].end - 0.01).abs() < 1e-12, "{:?}", log.records[0]);
+}
