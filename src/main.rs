@@ -311,11 +311,7 @@ fn run(
         if now.step % 64 == 0 || now.finished() {
             let stage = sim.world().get_resource::<StagePlan>().and_then(|plan| {
                 let spec = plan.scene.stages.get(plan.progress.current)?;
-                Some(format!(
-                    ", stage {} '{}'",
-                    plan.progress.current + 1,
-                    spec.name
-                ))
+                Some(format!(", stage '{}'", spec.name))
             });
             // The message carries the step with its time (the bar's own
             // position may be drawn a refresh apart from the message).

@@ -152,7 +152,7 @@ fn bad_blocks_are_refused_and_risky_ones_warned() {
     let warnings = sim.warnings().join("\n");
     assert!(warnings.contains("contact stability limit"), "{warnings}");
     assert!(
-        warnings.contains("block 'ground' overlaps body 'block' at the start by 4"),
+        warnings.contains("block 'ground' overlaps body 'block' by 4"),
         "{warnings}"
     );
     // Block-block contacts far too stiff for the step: more sub-steps than

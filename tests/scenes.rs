@@ -365,3 +365,18 @@ fn a_probe_far_from_its_body_warns() {
         "{warnings}"
     );
 }
+
+#[test]
+fn a_name_used_twice_is_placed_at_its_second_use() {
+    let probe = "(name: \"midpoint\", body: \"bar\", at: (0.5, 0.005)),";
+    let two = "(name: \"midpoint\", body: \"bar\", at: (0.5, 0.005)),\n        (name: \"midpoint\", body: \"bar\", at: (0.2, 0.005)),";
+    let text = std::fs::read_to_string(common::scene_path("wave_1d.ron")).unwrap();
+    let edited = text.replacen(probe, two, 1);
+    let second = edited.find("at: (0.2, 0.005)").unwrap();
+    let line = edited[..second].matches('\n').count() + 1;
+    assert_error(
+        parse_edited(probe, two),
+        line,
+        "probe name 'midpoint' is used twice",
+    );
+}

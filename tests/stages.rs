@@ -203,5 +203,9 @@ fn a_kinetic_energy_stage_that_starts_at_rest_waits_for_motion() {
     sim.run().expect("run");
     let log = sim.world().resource::<StageLog>();
     assert_eq!(log.records[0].reason, StageEndReason::MaxTime);
-    assert!((log.records[0].end - 0.01).abs() < 1e-12, "{:?}", log.records[0]);
+    assert!(
+        (log.records[0].end - 0.01).abs() < 1e-12,
+        "{:?}",
+        log.records[0]
+    );
 }

@@ -14,7 +14,8 @@ use crate::resources::Penetration;
 use crate::rigid::{MAX_SUBSTEPS, substeps_needed};
 use bevy_ecs::prelude::*;
 
-/// Overlap between a block and a body's disks at the start above which a
+/// Overlap between a block and a body's disks where the block is placed
+/// (at the start, or when a stage adds it) above which a
 /// warning is given: a tenth of the disk radius, more than the few
 /// per-mille a body placed exactly on a block shows through round-off.
 const OVERLAP_WARNING_FRACTION: Real = 0.1;
@@ -176,7 +177,7 @@ fn overlap_warning(
         .fold((0.0, 0.0), |worst, c| if c.0 > worst.0 { c } else { worst });
     (depth > OVERLAP_WARNING_FRACTION * radius).then(|| {
         format!(
-            "block '{block}' overlaps body '{body}' at the start by {depth:e} m (disk radius {radius:e} m): its contacts push the body away at once"
+            "block '{block}' overlaps body '{body}' by {depth:e} m where it is placed (disk radius {radius:e} m): its contacts push the body away at once"
         )
     })
 }

@@ -115,9 +115,10 @@ impl Scene {
         let mut material_names = BTreeSet::new();
         for m in &self.materials {
             let at = ["materials", &quoted(&m.name)];
+            // A name used twice: the place of its second use.
             if !material_names.insert(m.name.as_str()) {
                 return Err(invalid(
-                    &at,
+                    &[at[0], at[1], at[1]],
                     format!("material name '{}' is used twice", m.name),
                 ));
             }
@@ -144,10 +145,7 @@ impl Scene {
             let name = quoted(&b.name);
             let fail = |field: &str, message: String| invalid(&["bodies", &name, field], message);
             if !body_names.insert(b.name.as_str()) {
-                return Err(fail(
-                    "name",
-                    format!("body name '{}' is used twice", b.name),
-                ));
+                return Err(fail(&name, format!("body name '{}' is used twice", b.name)));
             }
             if let Some(load) = b.acceleration
                 && !(load.value.is_finite() && load.ramp_time.is_finite() && load.ramp_time >= 0.0)
@@ -299,7 +297,7 @@ impl Scene {
             let fail = |field: &str, message: String| invalid(&["blocks", &name, field], message);
             if !block_names.insert(block.name.as_str()) {
                 return Err(fail(
-                    "name",
+                    &name,
                     format!("block name '{}' is used twice", block.name),
                 ));
             }
@@ -375,7 +373,7 @@ impl Scene {
             let at = ["probes", &quoted(&p.name)];
             if !probe_names.insert(p.name.as_str()) {
                 return Err(invalid(
-                    &at,
+                    &[at[0], at[1], at[1]],
                     format!("probe name '{}' is used twice", p.name),
                 ));
             }
@@ -436,8 +434,12 @@ impl Scene {
             // Compared without case: macOS and Windows file systems ignore it.
             let file = curve.name.to_lowercase();
             if !curve_names.insert(file.clone()) {
-                return Err(fail_name(
-                    "the name is used twice (names are files: letter case does not tell them apart)".into(),
+                return Err(invalid(
+                    &["curves", &at, &at],
+                    format!(
+                        "curve '{}': the name is used twice (names are files: letter case does not tell them apart)",
+                        curve.name
+                    ),
                 ));
             }
             if RUN_FILE_STEMS.contains(&file.as_str()) || file.starts_with(PROBE_PLOT_PREFIX) {
@@ -590,7 +592,10 @@ impl Scene {
                 )
             };
             if !stage_names.insert(stage.name.as_str()) {
-                return Err(fail("name", "the name is used twice".into()));
+                return Err(invalid(
+                    &["stages", &at, &at],
+                    format!("stage '{}': the name is used twice", stage.name),
+                ));
             }
             stage
                 .end
