@@ -260,8 +260,12 @@ fn run(
             clock.time,
             checkpoint.display()
         );
-        RunOutput::resume(&dir, frame_interval, &scene, &sim)
-            .map_err(|e| format!("{}: cannot carry on the output: {e}", dir.display()))?
+        let (output, gaps) = RunOutput::resume(&dir, frame_interval, &scene, &sim)
+            .map_err(|e| format!("{}: cannot carry on the output: {e}", dir.display()))?;
+        if let Some(gaps) = gaps {
+            eprintln!("warning: {gaps}");
+        }
+        output
     } else {
         let (output, removed) = RunOutput::create(&dir, frame_interval, &scene, &mut sim)
             .map_err(|e| format!("cannot write the output: {e}"))?;

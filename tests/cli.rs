@@ -171,8 +171,28 @@ fn a_new_run_into_a_folder_removes_the_earlier_runs_files_and_no_others() {
         "{listed}"
     );
     assert!(!listed.contains("points_00003"), "{listed}");
+    // The kept checkpoint (0.05 s) carried on to 0.07 s: the frames before
+    // it are the second run's (0, 0.01, 0.02 s), not the 6 due (0 to 0.05 s,
+    // the checkpoint's own step being on the interval); a warning
+    // says the series has gaps.
+    let (later_base, later) = common::edited_wave_scene("rerun-later", "end: 1.0", "end: 0.07");
+    let result = mpdem(&[
+        "run",
+        later.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+        "--resume",
+    ]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(result.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("3 listed where 6 are due") && stderr.contains("the frame series has gaps"),
+        "{stderr}"
+    );
     std::fs::remove_dir_all(&base).ok();
     std::fs::remove_dir_all(&short_base).ok();
+    std::fs::remove_dir_all(&later_base).ok();
 }
 
 #[test]
@@ -200,7 +220,13 @@ fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outp
     // them from the collection and writes them again. (A new run into the
     // folder keeps the checkpoint.)
     printed_hash(&run(&long, &resumed, &[]));
-    let resumed_hash = printed_hash(&run(&long, &resumed, &["--resume"]));
+    let resumed_run = run(&long, &resumed, &["--resume"]);
+    let stderr = String::from_utf8_lossy(&resumed_run.stderr);
+    assert!(
+        !stderr.contains("gaps"),
+        "the frames up to the checkpoint are whole: {stderr}"
+    );
+    let resumed_hash = printed_hash(&resumed_run);
     let straight_hash = printed_hash(&run(&long, &straight, &[]));
     assert_eq!(resumed_hash, straight_hash);
     for file in [

@@ -144,13 +144,16 @@ impl RunOutput {
     /// `frame_interval` as for a new run. The extra frame a finished run
     /// writes at its end, off that interval, is dropped too: a run that
     /// never stopped would not have it. A folder without `points.pvd` is
-    /// not a run's folder: an error.
+    /// not a run's folder: an error. Returns the output and, when the kept
+    /// frames are not the ones due every `frame_interval` up to the
+    /// checkpoint (a run into the folder since the checkpoint replaced
+    /// them), a warning that the frame series has gaps.
     pub fn resume(
         dir: &Path,
         frame_interval: Real,
         scene: &Scene,
         sim: &Simulation,
-    ) -> std::io::Result<Self> {
+    ) -> std::io::Result<(Self, Option<String>)> {
         let clock = sim.clock();
         let frame_every = ((frame_interval / clock.dt).round() as u64).max(1);
         let on_interval = clock.step.is_multiple_of(frame_every);
@@ -164,13 +167,32 @@ impl RunOutput {
             Ok(frames)
         };
         let blocks = dir.join("blocks.pvd");
-        Ok(Self {
+        let frames = kept(&dir.join("points.pvd"))?;
+        let due: Vec<u64> = (0..)
+            .map(|k| k * frame_every)
+            .take_while(|&s| s < clock.step || (s == clock.step && on_interval))
+            .collect();
+        let whole = frames.len() == due.len()
+            && frames
+                .iter()
+                .zip(&due)
+                .all(|((t, _), &s)| (t - s as Real * clock.dt).abs() < 0.5 * clock.dt);
+        let gaps = (!whole).then(|| {
+            format!(
+                "{}: the frames before the checkpoint (t = {:.6e} s) are not this run's: {} listed where {} are due every {frame_interval:e} s (a run into this folder since the checkpoint replaced them); the frame series has gaps, the CSV series are whole",
+                dir.join("points.pvd").display(),
+                clock.time,
+                frames.len(),
+                due.len()
+            )
+        });
+        let output = Self {
             folder: Folder {
                 dir: dir.to_path_buf(),
                 manifest: OutputManifest::resume(dir)?,
             },
             frame_every,
-            frames: kept(&dir.join("points.pvd"))?,
+            frames,
             block_frames: if blocks.is_file() {
                 kept(&blocks)?
             } else {
@@ -178,7 +200,8 @@ impl RunOutput {
             },
             buffers: FrameBuffers::default(),
             curves: placed_curves(scene),
-        })
+        };
+        Ok((output, gaps))
     }
 
     /// The output folder.
