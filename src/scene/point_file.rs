@@ -3,8 +3,9 @@
 //! another tool.
 //!
 //! The file has a header naming its columns, `x` and `y` (m) and optionally
-//! `volume` (m² per metre of thickness), in any order, then one point per
-//! line, values separated by commas. Lines starting with `#` and blank lines
+//! `volume` (m² per metre of thickness), in any order and letter case, then
+//! one point per line, values separated by commas; headers and values may be
+//! double-quoted. Lines starting with `#` and blank lines
 //! are skipped; spaces around values, a byte-order mark and CRLF line ends
 //! are accepted. Parsed here rather than with the `csv` crate: numbers need
 //! no quoting, and errors must give the line as an editor shows it, which
@@ -84,6 +85,16 @@ pub fn read_point_file(path: &Path) -> Result<Vec<ListedPoint>, String> {
     parse_point_list(&text).map_err(|e| format!("{}:{e}", path.display()))
 }
 
+/// A CSV field without its surrounding spaces and double quotes.
+fn unquoted(field: &str) -> &str {
+    let field = field.trim();
+    field
+        .strip_prefix('"')
+        .and_then(|f| f.strip_suffix('"'))
+        .unwrap_or(field)
+        .trim()
+}
+
 /// The columns a point list may have.
 const COLUMNS: [&str; 3] = ["x", "y", "volume"];
 
@@ -98,10 +109,14 @@ fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, String> {
     let Some((header_line, header)) = lines.next() else {
         return Err("1: the point list is empty; expected a header x,y or x,y,volume".into());
     };
-    let names: Vec<&str> = header.split(',').map(str::trim).collect();
-    let column = |name: &str| names.iter().position(|&h| h == name);
+    // Spreadsheets and meshers write `"X"` as readily as `x`.
+    let names: Vec<String> = header
+        .split(',')
+        .map(|h| unquoted(h).to_ascii_lowercase())
+        .collect();
+    let column = |name: &str| names.iter().position(|h| h == name);
     for (k, name) in names.iter().enumerate() {
-        if !COLUMNS.contains(name) {
+        if !COLUMNS.contains(&name.as_str()) {
             return Err(format!(
                 "{header_line}: unknown column '{name}' in the header; expected x, y and optionally volume"
             ));
@@ -123,7 +138,7 @@ fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, String> {
     // domain twice over, and their contact disks would overlap fully.
     let mut placed = std::collections::HashMap::new();
     for (line, text) in lines {
-        let values: Vec<&str> = text.split(',').map(str::trim).collect();
+        let values: Vec<&str> = text.split(',').map(unquoted).collect();
         if values.len() != names.len() {
             return Err(format!(
                 "{line}: expected {} values ({}) as in the header, got {}",
@@ -172,6 +187,12 @@ fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn headers_and_values_may_be_quoted_and_capitalised() {
+        let points = parse_point_list("\"X\", \"Y\"\n\"1.5\", 2\n").unwrap();
+        assert_eq!(points[0].position, DVec2::new(1.5, 2.0));
+    }
 
     #[test]
     fn a_point_listed_twice_is_refused_with_both_lines() {

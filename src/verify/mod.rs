@@ -487,8 +487,12 @@ pub fn stages_as_planned(sim: &Simulation, planned: &[(&str, StageEndReason)]) -
         .iter()
         .map(|r| (r.name.as_str(), r.reason))
         .collect();
+    let listed: Vec<String> = stages
+        .iter()
+        .map(|(name, reason)| format!("{name}: {}", reason.label()))
+        .collect();
     (
-        format!("{stages:?}, {} warnings", log.warnings.len()),
+        format!("{}; {} warnings", listed.join(", "), log.warnings.len()),
         stages == planned && log.warnings.is_empty(),
     )
 }

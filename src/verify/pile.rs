@@ -90,8 +90,11 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
     ];
     let mut checks = vec![Check::judged(
         "stages: geostatic and surcharge settle, the pile is driven to 9R",
-        format!("{reasons:?}, z/R = {depth:.2} at the end"),
-        "[Condition, Condition, Duration], z/R ≥ 8.9",
+        format!(
+            "{}; z/R = {depth:.2} at the end",
+            reasons.iter().map(|r| r.label()).collect::<Vec<_>>().join(", ")
+        ),
+        "condition, condition, duration; z/R ≥ 8.9",
         reasons == planned && depth >= 8.9,
     )];
     let plateau = mean_between(&curve, 6.0, Real::INFINITY).unwrap_or(Real::NAN);
