@@ -380,3 +380,18 @@ fn a_name_used_twice_is_placed_at_its_second_use() {
         "probe name 'midpoint' is used twice",
     );
 }
+
+#[test]
+fn a_stage_duration_off_the_time_step_warns_with_the_steps_taken() {
+    // 3e-4 s at Δt = 2e-4 s: the stage ends on the first step with
+    // elapsed ≥ d − Δt/2, after one step (2e-4 s), a third short.
+    let mut scene = common::load_scene("geostatic_column.ron");
+    assert_eq!(scene.time.dt, 2e-4);
+    scene.stages[1].end = mpdem::scene::StageEnd::Duration(3e-4);
+    let sim = Simulation::from_scene(&scene).unwrap();
+    let warnings = sim.warnings().join("\n");
+    assert!(
+        warnings.contains("stage 'surcharge': Duration(3e-4) is not a multiple of time.dt = 2e-4 s: the stage takes 1 step(s), 2e-4 s"),
+        "{warnings}"
+    );
+}

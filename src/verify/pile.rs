@@ -92,7 +92,11 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
         "stages: geostatic and surcharge settle, the pile is driven to 9R",
         format!(
             "{}; z/R = {depth:.2} at the end",
-            reasons.iter().map(|r| r.label()).collect::<Vec<_>>().join(", ")
+            reasons
+                .iter()
+                .map(|r| r.label())
+                .collect::<Vec<_>>()
+                .join(", ")
         ),
         "condition, condition, duration; z/R ≥ 8.9",
         reasons == planned && depth >= 8.9,
