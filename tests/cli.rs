@@ -12,6 +12,23 @@ fn mpdem(args: &[&str]) -> std::process::Output {
         .expect("mpdem runs")
 }
 
+/// `mpdem run SCENE --quiet --out OUT` with `extra` arguments.
+fn run_into(
+    scene: &std::path::Path,
+    out: &std::path::Path,
+    extra: &[&str],
+) -> std::process::Output {
+    let mut args = vec![
+        "run",
+        scene.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    mpdem(&args)
+}
+
 #[test]
 fn run_writes_csv_vtk_and_png_outputs() {
     // The wave scene shortened to 0.05 s (500 steps) to keep the test fast.
@@ -130,15 +147,7 @@ fn a_new_run_into_a_folder_removes_the_earlier_runs_files_and_no_others() {
     let (short_base, short) = common::edited_wave_scene("rerun-short", "end: 1.0", "end: 0.02");
     let out = base.join("out");
     let run = |scene: &std::path::Path, extra: &[&str]| {
-        let mut args = vec![
-            "run",
-            scene.to_str().unwrap(),
-            "--quiet",
-            "--out",
-            out.to_str().unwrap(),
-        ];
-        args.extend_from_slice(extra);
-        let result = mpdem(&args);
+        let result = run_into(scene, &out, extra);
         assert!(
             result.status.success(),
             "{}",
@@ -176,14 +185,7 @@ fn a_new_run_into_a_folder_removes_the_earlier_runs_files_and_no_others() {
     // the checkpoint's own step being on the interval); a warning
     // says the series has gaps.
     let (later_base, later) = common::edited_wave_scene("rerun-later", "end: 1.0", "end: 0.07");
-    let result = mpdem(&[
-        "run",
-        later.to_str().unwrap(),
-        "--quiet",
-        "--out",
-        out.to_str().unwrap(),
-        "--resume",
-    ]);
+    let result = run_into(&later, &out, &["--resume"]);
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert!(result.status.success(), "{stderr}");
     assert!(
@@ -202,17 +204,7 @@ fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outp
     let (base, short) = common::edited_wave_scene("resume-short", "end: 1.0", "end: 0.055");
     let (other, long) = common::edited_wave_scene("resume-long", "end: 1.0", "end: 0.08");
     let (resumed, straight) = (base.join("out"), other.join("out"));
-    let run = |scene: &std::path::Path, out: &std::path::Path, extra: &[&str]| {
-        let mut args = vec![
-            "run",
-            scene.to_str().unwrap(),
-            "--quiet",
-            "--out",
-            out.to_str().unwrap(),
-        ];
-        args.extend_from_slice(extra);
-        mpdem(&args)
-    };
+    let run = run_into;
     printed_hash(&run(&short, &resumed, &["--checkpoint-every", "0.02"]));
     assert!(resumed.join("checkpoint.bin").is_file());
     // The folder then holds frames past the checkpoint (0.055 s), as after a

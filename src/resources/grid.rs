@@ -39,6 +39,22 @@ pub struct EdgeConditions {
     pub top: EdgeCondition,
 }
 
+/// One edge of the grid as seen from a box inside it (see
+/// [`Grid::edges_around`]), for messages.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GridEdge {
+    /// `left`, `right`, `bottom` or `top` (as in `grid.edges`).
+    pub name: &'static str,
+    /// Its velocity condition.
+    pub condition: EdgeCondition,
+    /// Distance from the box to the edge (m).
+    pub gap: Real,
+    /// Where it is, e.g. `y = 0`.
+    pub at: String,
+    /// Its outward unit normal.
+    pub outward: DVec2,
+}
+
 /// A uniform grid of square cells.
 #[derive(Resource, Clone, Debug, PartialEq)]
 pub struct Grid {
@@ -91,6 +107,34 @@ impl Grid {
         )
     }
 
+    /// The grid's four edges seen from the box from `low` to `high` (inside
+    /// the grid): each with its gap to the box.
+    pub fn edges_around(&self, low: DVec2, high: DVec2) -> [GridEdge; 4] {
+        let (lo, hi) = (self.origin, self.max());
+        // Axis 0 or 1, on its low or high side.
+        let edge = |name, condition, axis: usize, high_side: bool| {
+            let (gap, at, outward) = if high_side {
+                (hi[axis] - high[axis], hi[axis], DVec2::AXES[axis])
+            } else {
+                (low[axis] - lo[axis], lo[axis], -DVec2::AXES[axis])
+            };
+            let at = format!("{} = {at}", ["x", "y"][axis]);
+            GridEdge {
+                name,
+                condition,
+                gap,
+                at,
+                outward,
+            }
+        };
+        [
+            edge("left", self.edges.left, 0, false),
+            edge("right", self.edges.right, 0, true),
+            edge("bottom", self.edges.bottom, 1, false),
+            edge("top", self.edges.top, 1, true),
+        ]
+    }
+
     /// Why a point's stencil was refused (see [`StencilGrid`]): its position
     /// outside the grid, or, inside it, its support reaching past an open
     /// (`Free`) edge, where there are no nodes to take its weight; the
@@ -100,38 +144,18 @@ impl Grid {
         if !(position.cmpge(lo).all() && position.cmple(hi).all()) {
             return format!("{position} has left the grid, from {lo} to {hi}");
         }
-        let edges = [
-            (
-                "left",
-                self.edges.left,
-                position.x - lo.x,
-                format!("x = {}", lo.x),
-            ),
-            (
-                "right",
-                self.edges.right,
-                hi.x - position.x,
-                format!("x = {}", hi.x),
-            ),
-            (
-                "bottom",
-                self.edges.bottom,
-                position.y - lo.y,
-                format!("y = {}", lo.y),
-            ),
-            (
-                "top",
-                self.edges.top,
-                hi.y - position.y,
-                format!("y = {}", hi.y),
-            ),
-        ];
+        let edges = self.edges_around(position, position);
         let nearest = edges
             .into_iter()
-            .filter(|edge| !edge.1.is_wall())
-            .min_by(|a, b| a.2.total_cmp(&b.2));
+            .filter(|edge| !edge.condition.is_wall())
+            .min_by(|a, b| a.gap.total_cmp(&b.gap));
         match nearest {
-            Some((name, _, distance, at)) => format!(
+            Some(GridEdge {
+                name,
+                gap: distance,
+                at,
+                ..
+            }) => format!(
                 "{position} lies {distance:.3e} m from the grid's {name} edge {at}, and the point's shape functions (domain half-size {half_size}) reach past it; that edge is Free (the default, unless grid.edges or a stage's edges set it), with no nodes beyond it: give it a wall (Slip or Fixed) or extend the grid"
             ),
             None => format!("{position}: the point's shape functions reach past the grid"),
@@ -234,6 +258,35 @@ impl Grid {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_refused_point_is_explained_by_the_nearest_open_edge() {
+        let grid = Grid {
+            origin: DVec2::ZERO,
+            cell_size: 1.0,
+            cells: [10, 10],
+            edges: EdgeConditions {
+                left: EdgeCondition::Slip,
+                ..Default::default()
+            },
+        };
+        let half = DVec2::splat(0.5);
+        // Nearer the Slip left edge than the Free bottom one: the bottom is named.
+        let near = grid.why_outside(DVec2::new(0.2, 0.4), half);
+        assert!(
+            near.contains("4.000e-1 m from the grid's bottom edge y = 0"),
+            "{near}"
+        );
+        let gone = grid.why_outside(DVec2::new(5.0, -1.0), half);
+        assert!(
+            gone.contains("has left the grid, from [0, 0] to [10, 10]"),
+            "{gone}"
+        );
+        let edges = grid.edges_around(DVec2::new(1.0, 2.0), DVec2::new(3.0, 4.0));
+        let gaps: Vec<Real> = edges.iter().map(|e| e.gap).collect();
+        assert_eq!(gaps, vec![1.0, 7.0, 2.0, 6.0]);
+        assert_eq!(edges[3].outward, DVec2::Y);
+    }
 
     #[test]
     fn slip_holds_the_normal_component_and_corners_merge() {

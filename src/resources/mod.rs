@@ -20,7 +20,7 @@ pub use clock::Clock;
 pub use contact_settings::{BlockContactHistory, BlockContactKey, ContactSettings, Penetration};
 pub use contact_work::ContactWork;
 pub use diagnostics::{Diagnostics, NumericalFailure};
-pub use grid::{EdgeCondition, EdgeConditions, Grid};
+pub use grid::{EdgeCondition, EdgeConditions, Grid, GridEdge};
 pub use records::{
     BlockLog, BlockPartSample, BlockSample, BodyPairLog, BodyPairSample, EnergyLog, EnergySample,
     Probe, ProbeSample, Probes,

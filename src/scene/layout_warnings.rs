@@ -28,7 +28,6 @@ pub fn free_edge_warnings(
     gravity: DVec2,
     bodies: &[(&str, &MaterialPoints)],
 ) -> Vec<String> {
-    let (lo, hi) = (grid.origin, grid.max());
     let touch = TOUCH * grid.cell_size;
     let mut warnings = Vec::new();
     for (name, points) in bodies {
@@ -36,42 +35,11 @@ pub fn free_edge_warnings(
             (DVec2::INFINITY, DVec2::NEG_INFINITY),
             |(low, high), (x, h)| (low.min(*x - *h), high.max(*x + *h)),
         );
-        // Each edge: its name, condition, the body's gap to it, where it
-        // is, and its outward direction (gravity against it pulls the body
-        // off the edge).
-        let edges = [
-            (
-                "left",
-                grid.edges.left,
-                low.x - lo.x,
-                format!("x = {}", lo.x),
-                -DVec2::X,
-            ),
-            (
-                "right",
-                grid.edges.right,
-                hi.x - high.x,
-                format!("x = {}", hi.x),
-                DVec2::X,
-            ),
-            (
-                "bottom",
-                grid.edges.bottom,
-                low.y - lo.y,
-                format!("y = {}", lo.y),
-                -DVec2::Y,
-            ),
-            (
-                "top",
-                grid.edges.top,
-                hi.y - high.y,
-                format!("y = {}", hi.y),
-                DVec2::Y,
-            ),
-        ];
-        for (edge, condition, gap, at, outward) in edges {
-            let pulled_off = gravity.dot(outward) < 0.0;
-            if !condition.is_wall() && gap <= touch && !pulled_off {
+        for edge in grid.edges_around(low, high) {
+            // Gravity against the outward normal pulls the body off the edge.
+            let pulled_off = gravity.dot(edge.outward) < 0.0;
+            if !edge.condition.is_wall() && edge.gap <= touch && !pulled_off {
+                let (edge, at) = (edge.name, edge.at);
                 warnings.push(format!(
                     "body '{name}' touches the grid's {edge} edge {at}, which is Free (the default for every edge): nothing holds the body there, and the run stops if a point's shape functions reach past the edge; give it a wall (grid.edges.{edge}: Slip or Fixed) or extend the grid"
                 ));
