@@ -334,7 +334,10 @@ fn run(
     }
     if let Err(e) = output.finish(&mut sim, failure.is_some()) {
         let written = format!("cannot write the output: {e}");
-        return Err(failure.map_or(written.clone(), |f| format!("{f}\n{written}")));
+        return Err(match failure {
+            Some(f) => format!("{f}\n{written}"),
+            None => written,
+        });
     }
     if let Some(message) = failure {
         return Err(format!(
