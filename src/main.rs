@@ -260,7 +260,7 @@ fn run(
             clock.time,
             checkpoint.display()
         );
-        let (output, gaps) = RunOutput::resume(&dir, frame_interval, &scene, &sim)
+        let (output, gaps) = RunOutput::resume(&dir, frame_interval, &scene, &sim, &checkpoint)
             .map_err(|e| format!("{}: cannot carry on the output: {e}", dir.display()))?;
         if let Some(gaps) = gaps {
             eprintln!("warning: {gaps}");

@@ -8,7 +8,7 @@ use crate::math::{DVec2, Real};
 use crate::resources::{
     AppliedLoad, Clock, Gravity, Grid, Settings, StageEndReason, StageLog, StagePlan, StageRecord,
 };
-use crate::scene::{Side, StageEnd, spawn_block};
+use crate::scene::{MotionSpec, Scene, Side, StageEnd, spawn_block};
 use bevy_ecs::prelude::*;
 use std::collections::BTreeMap;
 
@@ -63,7 +63,7 @@ fn stage_end(world: &mut World, plan: &mut StagePlan) -> Option<StageEndReason> 
                         .sum::<Real>()
                 })
                 .sum::<Real>()
-                + dynamic_blocks_kinetic_energy(world, plan.scene.blocks.len());
+                + dynamic_blocks_kinetic_energy(world, &plan.scene);
             plan.progress.peak_kinetic = plan.progress.peak_kinetic.max(kinetic);
             // Nothing has moved yet (a stage that starts at rest): the
             // model has not settled, it has not begun.
@@ -101,16 +101,25 @@ fn stage_end(world: &mut World, plan: &mut StagePlan) -> Option<StageEndReason> 
     }
 }
 
-/// The kinetic energy of the dynamic blocks of the scene's `blocks`
-/// (present or not), ½ m |v|² + ½ I ω², summed in scene order whatever
-/// order the world holds them in (a resumed run spawns them in another),
-/// without allocating: a scan per block, and blocks are few. Kinematic
-/// blocks move as they are told: their motion is no sign of the model
-/// settling.
-fn dynamic_blocks_kinetic_energy(world: &mut World, blocks: usize) -> Real {
+/// The kinetic energy of the scene's dynamic blocks that are present,
+/// ½ m |v|² + ½ I ω², summed in scene order whatever order the world holds
+/// them in (a resumed run spawns them in another): a scan per block, and
+/// blocks are few. Kinematic blocks move as they are told: their motion is
+/// no sign of the model settling. A scene without dynamic blocks returns 0
+/// at once; with them, the query allocates its state once per step.
+fn dynamic_blocks_kinetic_energy(world: &mut World, scene: &Scene) -> Real {
+    let dynamic = |b: &crate::scene::BlockSpec| {
+        matches!(
+            b.motion,
+            MotionSpec::Dynamic { .. } | MotionSpec::DynamicWithMass { .. }
+        )
+    };
+    if !scene.blocks.iter().any(dynamic) {
+        return 0.0;
+    }
     let mut query = world.query::<(&BlockId, &RigidMotion, &RigidMass, &RigidVelocity)>();
     let mut total = 0.0;
-    for k in 0..blocks as u32 {
+    for k in 0..scene.blocks.len() as u32 {
         let energy = query
             .iter(world)
             .find(|(id, motion, ..)| id.index == k && **motion == RigidMotion::Dynamic)

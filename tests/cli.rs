@@ -181,15 +181,16 @@ fn a_new_run_into_a_folder_removes_the_earlier_runs_files_and_no_others() {
     );
     assert!(!listed.contains("points_00003"), "{listed}");
     // The kept checkpoint (0.05 s) carried on to 0.07 s: the frames before
-    // it are the second run's (0, 0.01, 0.02 s), which stop 0.03 s short of
-    // it; a warning says the series has gaps.
+    // it are the second run's (0, 0.01, 0.02 s), written after it; a
+    // warning says so.
     let (later_base, later) = common::edited_wave_scene("rerun-later", "end: 1.0", "end: 0.07");
     let result = run_into(&later, &out, &["--resume"]);
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert!(result.status.success(), "{stderr}");
     assert!(
-        stderr.contains("no frame between t = 2e-2 s and the checkpoint at t = 5.000000e-2 s")
-            && stderr.contains("the frame series has gaps"),
+        stderr.contains(
+            "the frames were written after the checkpoint, by another run into this folder"
+        ),
         "{stderr}"
     );
     std::fs::remove_dir_all(&base).ok();
@@ -210,12 +211,22 @@ fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outp
     // The folder then holds frames past the checkpoint (0.055 s), as after a
     // run stopped later than its last checkpoint: the resumed run drops
     // them from the collection and writes them again. (A new run into the
-    // folder keeps the checkpoint.)
+    // folder keeps the checkpoint.) That run's first frame is dated before
+    // the checkpoint, as the frames of the run that wrote it are: a resume
+    // warns when they were written after it.
     printed_hash(&run(&long, &resumed, &[]));
+    let written = std::fs::metadata(resumed.join("checkpoint.bin"))
+        .and_then(|m| m.modified())
+        .unwrap();
+    std::fs::File::options()
+        .write(true)
+        .open(resumed.join("vtk/points_00000.vtu"))
+        .and_then(|f| f.set_modified(written - std::time::Duration::from_secs(60)))
+        .unwrap();
     let resumed_run = run(&long, &resumed, &["--resume"]);
     let stderr = String::from_utf8_lossy(&resumed_run.stderr);
     assert!(
-        !stderr.contains("gaps"),
+        !stderr.contains("written after the checkpoint"),
         "the frames up to the checkpoint are whole: {stderr}"
     );
     let resumed_hash = printed_hash(&resumed_run);

@@ -368,30 +368,57 @@ fn a_probe_far_from_its_body_warns() {
 
 #[test]
 fn a_name_used_twice_is_placed_at_its_second_use() {
-    let probe = "(name: \"midpoint\", body: \"bar\", at: (0.5, 0.005)),";
-    let two = "(name: \"midpoint\", body: \"bar\", at: (0.5, 0.005)),\n        (name: \"midpoint\", body: \"bar\", at: (0.2, 0.005)),";
+    // The body "bar" of material "bar" twice: the error points at the
+    // second body's name, not at a later "bar" inside the first body.
+    let body = "            velocity: Field(x: \"x*(1-x)\", y: \"0\"),\n        ),";
+    let two = format!(
+        "{body}\n        (\n            name: \"bar\",\n            material: \"bar\",\n            shape: Rectangle(min: (0.0, 0.0), max: (0.5, 0.01)),\n        ),"
+    );
     let text = std::fs::read_to_string(common::scene_path("wave_1d.ron")).unwrap();
-    let edited = text.replacen(probe, two, 1);
-    let second = edited.find("at: (0.2, 0.005)").unwrap();
-    let line = edited[..second].matches('\n').count() + 1;
+    let edited = text.replacen(body, &two, 1);
+    let second = edited.find("max: (0.5, 0.01)").unwrap();
+    let line = edited[..second].matches('\n').count() - 1;
     assert_error(
-        parse_edited(probe, two),
+        parse_edited(body, &two),
         line,
-        "probe name 'midpoint' is used twice",
+        "body name 'bar' is used twice",
+    );
+    // Probes likewise, one named like its body.
+    let probe = "(name: \"midpoint\", body: \"bar\", at: (0.5, 0.005)),";
+    let probes = "(name: \"bar\", body: \"bar\", at: (0.5, 0.005)),\n        (name: \"bar\", body: \"bar\", at: (0.2, 0.005)),";
+    let edited = text.replacen(probe, probes, 1);
+    let line = edited[..edited.find("at: (0.2, 0.005)").unwrap()]
+        .matches('\n')
+        .count()
+        + 1;
+    assert_error(
+        parse_edited(probe, probes),
+        line,
+        "probe name 'bar' is used twice",
     );
 }
 
 #[test]
 fn a_stage_duration_off_the_time_step_warns_with_the_steps_taken() {
-    // 3e-4 s at Δt = 2e-4 s: the stage ends on the first step with
-    // elapsed ≥ d − Δt/2, after one step (2e-4 s), a third short.
+    // 3.2e-4 s at Δt = 2e-4 s: the stage ends on the first step with
+    // elapsed ≥ d − Δt/2 = 2.2e-4 s, the second (4e-4 s).
     let mut scene = common::load_scene("geostatic_column.ron");
     assert_eq!(scene.time.dt, 2e-4);
+    scene.stages[0].end = mpdem::scene::StageEnd::Duration(3.2e-4);
     scene.stages[1].end = mpdem::scene::StageEnd::Duration(3e-4);
-    let sim = Simulation::from_scene(&scene).unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
     let warnings = sim.warnings().join("\n");
     assert!(
-        warnings.contains("stage 'surcharge': Duration(3e-4) is not a multiple of time.dt = 2e-4 s: the stage takes 1 step(s), 2e-4 s"),
+        warnings.contains("stage 'geostatic': Duration(3.2e-4) is not a multiple of time.dt = 2e-4 s: the stage takes 2 step(s), 4e-4 s"),
         "{warnings}"
     );
+    // 3e-4 s is 1.5 steps: round-off decides, and the warning says so.
+    assert!(
+        warnings.contains("stage 'surcharge': Duration(3e-4) is not a multiple of time.dt = 2e-4 s: the stage takes 1 or 2 steps (a half-step tie)"),
+        "{warnings}"
+    );
+    sim.run().unwrap();
+    let log = sim.world().resource::<mpdem::resources::StageLog>();
+    assert_eq!(log.records[0].steps, 2);
+    assert!((1..=2).contains(&log.records[1].steps));
 }

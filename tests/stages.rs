@@ -209,3 +209,33 @@ fn a_kinetic_energy_stage_that_starts_at_rest_waits_for_motion() {
         log.records[0]
     );
 }
+
+#[test]
+fn a_kinetic_energy_stage_counts_the_dynamic_blocks() {
+    // The box dropped 0.1 m onto the ground (no bodies at all): the stage
+    // ends on its condition once the box has landed and settled, after the
+    // 0.14 s fall, not on its first step and not at max_time.
+    let mut scene = common::load_scene("rigid_drop.ron");
+    scene.stages = vec![mpdem::scene::StageSpec {
+        name: "drop".into(),
+        end: mpdem::scene::StageEnd::KineticEnergyRatio {
+            ratio: 1e-3,
+            max_time: 1.4,
+        },
+        pic_fraction: None,
+        grid_damping: None,
+        particle_damping: None,
+        gravity: None,
+        edges: None,
+        remove_blocks: Vec::new(),
+        add_blocks: Vec::new(),
+        block_velocities: Vec::new(),
+        tractions: Vec::new(),
+    }];
+    let mut sim = Simulation::from_scene(&scene).expect("scene");
+    sim.run().expect("run");
+    let record = &sim.world().resource::<StageLog>().records[0];
+    assert_eq!(record.reason, StageEndReason::Condition, "{record:?}");
+    let fall = (2.0 * 0.1 / 9.81_f64).sqrt();
+    assert!(record.end > fall && record.end < 1.4, "{record:?}");
+}

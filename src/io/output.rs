@@ -144,15 +144,16 @@ impl RunOutput {
     /// `frame_interval` as for a new run. The extra frame a finished run
     /// writes at its end, off that interval, is dropped too: a run that
     /// never stopped would not have it. A folder without `points.pvd` is
-    /// not a run's folder: an error. Returns the output and, when the kept
-    /// frames stop well short of the checkpoint ([`frame_gap`]: a run into
-    /// the folder since the checkpoint replaced them), a warning that the
-    /// frame series has gaps.
+    /// not a run's folder: an error. Returns the output and, when the
+    /// folder's first frame was written after `checkpoint` (another run into
+    /// the folder since then replaced the frames), a warning that the frames
+    /// before the checkpoint are not this run's.
     pub fn resume(
         dir: &Path,
         frame_interval: Real,
         scene: &Scene,
         sim: &Simulation,
+        checkpoint: &Path,
     ) -> std::io::Result<(Self, Option<String>)> {
         let clock = sim.clock();
         let frame_every = ((frame_interval / clock.dt).round() as u64).max(1);
@@ -168,10 +169,20 @@ impl RunOutput {
         };
         let blocks = dir.join("blocks.pvd");
         let frames = kept(&dir.join("points.pvd"))?;
-        let gaps = frame_gap(&frames, clock.time).map(|(from, to)| {
+        // A run resumed from the checkpoint keeps the first frame its own
+        // run wrote before it; one written after it is another run's.
+        let modified = |path: &Path| std::fs::metadata(path).and_then(|m| m.modified()).ok();
+        let first_frame = frames
+            .first()
+            .and_then(|(_, name)| modified(&dir.join(name)));
+        let replaced = first_frame
+            .zip(modified(checkpoint))
+            .is_some_and(|(frame, written)| frame > written);
+        let gaps = replaced.then(|| {
             format!(
-                "{}: no frame between t = {from:e} s and the checkpoint at t = {to:.6e} s, where the frames before were closer: a run into this folder since the checkpoint replaced them, so the frame series has gaps (the CSV series are whole)",
-                dir.join("points.pvd").display()
+                "{}: the frames were written after the checkpoint, by another run into this folder: the frames before t = {:.6e} s are that run's, not this one's (the CSV series, kept in the checkpoint, are whole)",
+                dir.join("points.pvd").display(),
+                clock.time
             )
         });
         let output = Self {
@@ -412,23 +423,6 @@ impl RunOutput {
     }
 }
 
-/// The last stretch without a frame, from the last kept frame to the
-/// checkpoint's time `to`, when it is longer than one and a half of the
-/// widest spacing between the kept frames: the run that wrote the
-/// checkpoint wrote frames at least that often up to it, whatever its
-/// frame interval was (a resumed scene may change it). `None` with fewer
-/// than two frames, which show no spacing.
-fn frame_gap(frames: &[(Real, String)], to: Real) -> Option<(Real, Real)> {
-    let widest = frames
-        .windows(2)
-        .map(|pair| pair[1].0 - pair[0].0)
-        .fold(None, |widest: Option<Real>, spacing| {
-            Some(widest.map_or(spacing, |w| w.max(spacing)))
-        })?;
-    let last = frames.last()?.0;
-    (to - last > 1.5 * widest).then_some((last, to))
-}
-
 /// The scene's curves, each with the frame origin its block is placed at.
 fn placed_curves(scene: &Scene) -> Vec<(CurveSpec, DVec2)> {
     scene
@@ -557,25 +551,6 @@ type ProbePlot = (&'static str, &'static str, [ProbeCurve; 3]);
 mod tests {
     use super::*;
     use crate::resources::BlockSample;
-
-    #[test]
-    fn frames_that_stop_well_short_of_the_checkpoint_are_a_gap() {
-        let frames = |times: &[Real]| -> Vec<(Real, String)> {
-            times.iter().map(|&t| (t, String::new())).collect()
-        };
-        // Every 0.01 s up to 0.05, checkpoint at 0.055: whole.
-        let whole = frames(&[0.0, 0.01, 0.02, 0.03, 0.04, 0.05]);
-        assert_eq!(frame_gap(&whole, 0.055), None);
-        // A run with another interval (0.02 s) wrote them: still whole.
-        assert_eq!(frame_gap(&frames(&[0.0, 0.02, 0.04]), 0.05), None);
-        // A later, shorter run replaced them: 0.03 s without a frame.
-        assert_eq!(
-            frame_gap(&frames(&[0.0, 0.01, 0.02]), 0.05),
-            Some((0.02, 0.05))
-        );
-        // One frame shows no spacing: nothing is judged.
-        assert_eq!(frame_gap(&frames(&[0.0]), 0.05), None);
-    }
 
     /// A punch placed at y = 0.4 and driven down at 0.05 m/s from t = 0:
     /// its first sample, a probe interval in, has moved 0.5 mm already,

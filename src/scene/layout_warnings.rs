@@ -41,7 +41,7 @@ pub fn free_edge_warnings(
             if !edge.condition.is_wall() && edge.gap <= touch && !pulled_off {
                 let (edge, at) = (edge.name, edge.at);
                 warnings.push(format!(
-                    "body '{name}' touches the grid's {edge} edge {at}, which is Free (the default for every edge): nothing holds the body there, and the run stops if a point's shape functions reach past the edge; give it a wall (grid.edges.{edge}: Slip or Fixed) or extend the grid"
+                    "body '{name}' touches the grid's {edge} edge {at}, which is Free (the default, unless grid.edges or the first stage's edges set it): nothing holds the body there, and the run stops if a point's shape functions reach past the edge; give it a wall (Slip or Fixed) or extend the grid"
                 ));
             }
         }

@@ -94,11 +94,22 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
             let ratio = d / clock.dt;
             let stage_steps = (ratio - 0.5 - 1e-9).ceil().max(1.0) as u64;
             if (stage_steps as Real * clock.dt - d).abs() > OFF_STEP_WARNING * d {
+                // At a half-step tie the elapsed time's round-off decides.
+                let tie = ratio > 0.5 && (ratio.fract() - 0.5).abs() < 1e-6;
+                let takes = if tie {
+                    format!(
+                        "{stage_steps} or {} steps (a half-step tie)",
+                        stage_steps + 1
+                    )
+                } else {
+                    format!(
+                        "{stage_steps} step(s), {:e} s",
+                        stage_steps as Real * clock.dt
+                    )
+                };
                 warnings.push(format!(
-                    "stage '{}': Duration({d:e}) is not a multiple of time.dt = {:e} s: the stage takes {stage_steps} step(s), {:e} s",
-                    stage.name,
-                    clock.dt,
-                    stage_steps as Real * clock.dt
+                    "stage '{}': Duration({d:e}) is not a multiple of time.dt = {:e} s: the stage takes {takes}",
+                    stage.name, clock.dt
                 ));
             }
         }

@@ -38,6 +38,13 @@ impl Scene {
             message,
         };
         let quoted = |name: &str| format!("\"{name}\"");
+        // The `name` field of entry k of a section (each entry has one), for
+        // a name used twice: the place of its second use.
+        let nth_name = |section: &'static str, k: usize| -> Vec<&'static str> {
+            std::iter::once(section)
+                .chain(std::iter::repeat_n("name", k + 1))
+                .collect()
+        };
 
         if let Some(name) = &self.name {
             rules::file_name(name).map_err(|e| {
@@ -113,12 +120,11 @@ impl Scene {
         }
 
         let mut material_names = BTreeSet::new();
-        for m in &self.materials {
+        for (k, m) in self.materials.iter().enumerate() {
             let at = ["materials", &quoted(&m.name)];
-            // A name used twice: the place of its second use.
             if !material_names.insert(m.name.as_str()) {
                 return Err(invalid(
-                    &[at[0], at[1], at[1]],
+                    &nth_name("materials", k),
                     format!("material name '{}' is used twice", m.name),
                 ));
             }
@@ -141,11 +147,14 @@ impl Scene {
         let margin = self.settings.shape_function.required_margin_cells() * grid.cell_size;
         let mut body_names = BTreeSet::new();
         let mut total_points: Real = 0.0;
-        for b in &self.bodies {
+        for (k, b) in self.bodies.iter().enumerate() {
             let name = quoted(&b.name);
             let fail = |field: &str, message: String| invalid(&["bodies", &name, field], message);
             if !body_names.insert(b.name.as_str()) {
-                return Err(fail(&name, format!("body name '{}' is used twice", b.name)));
+                return Err(invalid(
+                    &nth_name("bodies", k),
+                    format!("body name '{}' is used twice", b.name),
+                ));
             }
             if let Some(load) = b.acceleration
                 && !(load.value.is_finite() && load.ramp_time.is_finite() && load.ramp_time >= 0.0)
@@ -292,12 +301,12 @@ impl Scene {
             return Err(invalid(&["bodies", &quoted(&r.0), "contact_radius"], r.1));
         }
         let mut block_names = BTreeSet::new();
-        for block in &self.blocks {
+        for (k, block) in self.blocks.iter().enumerate() {
             let name = quoted(&block.name);
             let fail = |field: &str, message: String| invalid(&["blocks", &name, field], message);
             if !block_names.insert(block.name.as_str()) {
-                return Err(fail(
-                    &name,
+                return Err(invalid(
+                    &nth_name("blocks", k),
                     format!("block name '{}' is used twice", block.name),
                 ));
             }
@@ -369,11 +378,11 @@ impl Scene {
 
         let mut probe_names = BTreeSet::new();
         let mut probe_files = BTreeMap::new();
-        for p in &self.probes {
+        for (k, p) in self.probes.iter().enumerate() {
             let at = ["probes", &quoted(&p.name)];
             if !probe_names.insert(p.name.as_str()) {
                 return Err(invalid(
-                    &[at[0], at[1], at[1]],
+                    &nth_name("probes", k),
                     format!("probe name '{}' is used twice", p.name),
                 ));
             }
@@ -416,7 +425,7 @@ impl Scene {
         }
 
         let mut curve_names = BTreeSet::new();
-        for curve in &self.output.curves {
+        for (k, curve) in self.output.curves.iter().enumerate() {
             let at = quoted(&curve.name);
             let fail = |field: &str, message: String| {
                 invalid(
@@ -435,7 +444,7 @@ impl Scene {
             let file = curve.name.to_lowercase();
             if !curve_names.insert(file.clone()) {
                 return Err(invalid(
-                    &["curves", &at, &at],
+                    &nth_name("curves", k),
                     format!(
                         "curve '{}': the name is used twice (names are files: letter case does not tell them apart)",
                         curve.name
@@ -583,7 +592,7 @@ impl Scene {
             .filter(|b| b.present)
             .map(|b| b.name.as_str())
             .collect();
-        for stage in &self.stages {
+        for (k, stage) in self.stages.iter().enumerate() {
             let at = quoted(&stage.name);
             let fail = |field: &str, message: String| {
                 invalid(
@@ -593,7 +602,7 @@ impl Scene {
             };
             if !stage_names.insert(stage.name.as_str()) {
                 return Err(invalid(
-                    &["stages", &at, &at],
+                    &nth_name("stages", k),
                     format!("stage '{}': the name is used twice", stage.name),
                 ));
             }
