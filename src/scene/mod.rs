@@ -13,6 +13,7 @@ mod shapes;
 mod spawn;
 mod spawn_blocks;
 mod stages;
+mod step_warnings;
 mod validate;
 mod velocity_field;
 

@@ -1,6 +1,7 @@
 //! Turning a validated scene into a bevy `World`.
 
 use super::layout_warnings::{body_overlap_warnings, free_edge_warnings};
+use super::step_warnings::off_step_warnings;
 use super::{InitialStress, InitialVelocity, Scene, SceneError, SourceLocation, VelocityField};
 use crate::components::{
     BodyIndex, BodyName, DampedEnergy, GridLayer, Material, MaterialPoints, NewPoint,
@@ -12,12 +13,6 @@ use crate::resources::{
     Gravity, Grid, Probe, Probes, SharedLayers, StageLog, StagePlan, StageProgress,
 };
 use bevy_ecs::prelude::*;
-
-/// How far, as a fraction of itself, a duration (`time.end`, a stage's)
-/// may be from the whole number of steps the run gives it before a warning
-/// says so: a thousandth, far above the round-off of a duration meant as a
-/// multiple of Δt, far below one step of a duration a few steps long.
-const OFF_STEP_WARNING: Real = 1e-3;
 
 /// Builds the world of a scene that passed [`Scene::validate`]: resources,
 /// then one entity per body in scene order, then the step-0 probe and
@@ -79,41 +74,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         }
         bodies.push(entity);
     }
-    let steps = clock.total_steps();
-    if (steps as Real * clock.dt - clock.end).abs() > OFF_STEP_WARNING * clock.end {
-        warnings.push(format!(
-            "time.end = {:e} s is not a multiple of time.dt = {:e} s: the run takes the nearest whole number of steps, {steps}, to t = {:e} s",
-            clock.end,
-            clock.dt,
-            steps as Real * clock.dt
-        ));
-    }
-    for stage in &scene.stages {
-        if let super::StageEnd::Duration(d) = stage.end {
-            // The stage ends on the first step with elapsed ≥ d − Δt/2.
-            let ratio = d / clock.dt;
-            let stage_steps = (ratio - 0.5 - 1e-9).ceil().max(1.0) as u64;
-            if (stage_steps as Real * clock.dt - d).abs() > OFF_STEP_WARNING * d {
-                // At a half-step tie the elapsed time's round-off decides.
-                let tie = ratio > 0.5 && (ratio.fract() - 0.5).abs() < 1e-6;
-                let takes = if tie {
-                    format!(
-                        "{stage_steps} or {} steps (a half-step tie)",
-                        stage_steps + 1
-                    )
-                } else {
-                    format!(
-                        "{stage_steps} step(s), {:e} s",
-                        stage_steps as Real * clock.dt
-                    )
-                };
-                warnings.push(format!(
-                    "stage '{}': Duration({d:e}) is not a multiple of time.dt = {:e} s: the stage takes {takes}",
-                    stage.name, clock.dt
-                ));
-            }
-        }
-    }
+    warnings.extend(off_step_warnings(scene, &clock));
     for material in &scene.materials {
         let wave_speed = (material.model.as_model().p_wave_modulus() / material.density).sqrt();
         let limit = grid.cell_size / wave_speed;
