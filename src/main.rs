@@ -252,7 +252,6 @@ fn run(
             clock.end
         ));
     }
-    let frame_interval = scene.output.frame_interval_or_default(clock.end);
     let mut output = if checkpoints.resume {
         eprintln!(
             "resuming at step {} (t = {:.6e} s) from {}",
@@ -260,14 +259,14 @@ fn run(
             clock.time,
             checkpoint.display()
         );
-        let (output, gaps) = RunOutput::resume(&dir, frame_interval, &scene, &sim, &checkpoint)
+        let (output, gaps) = RunOutput::resume(&dir, &scene, &sim, &checkpoint)
             .map_err(|e| format!("{}: cannot carry on the output: {e}", dir.display()))?;
         if let Some(gaps) = gaps {
             eprintln!("warning: {gaps}");
         }
         output
     } else {
-        let (output, removed) = RunOutput::create(&dir, frame_interval, &scene, &mut sim)
+        let (output, removed) = RunOutput::create(&dir, &scene, &mut sim)
             .map_err(|e| format!("cannot write the output: {e}"))?;
         if removed > 0 {
             eprintln!(

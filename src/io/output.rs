@@ -109,20 +109,18 @@ type CurveSample = (Real, Real, Real);
 
 impl RunOutput {
     /// Creates the folder (and `vtk/` inside it), removes the files an
-    /// earlier run into it listed, and writes frame 0. `frame_interval` is
-    /// the simulated time between frames (s); the `scene`'s curves are written at the
-    /// end. Returns the output and how many of the earlier run's files were
-    /// removed.
+    /// earlier run into it listed, and writes frame 0. Frames follow the
+    /// `scene`'s frame interval; its curves are written at the end. Returns
+    /// the output and how many of the earlier run's files were removed.
     pub fn create(
         dir: &Path,
-        frame_interval: Real,
         scene: &Scene,
         sim: &mut Simulation,
     ) -> std::io::Result<(Self, usize)> {
         let vtk = dir.join("vtk");
         std::fs::create_dir_all(&vtk).map_err(|e| located(&vtk, e))?;
         let (manifest, removed) = OutputManifest::start(dir)?;
-        let frame_every = ((frame_interval / sim.clock().dt).round() as u64).max(1);
+        let frame_every = frame_every(scene, sim);
         let mut output = Self {
             folder: Folder {
                 dir: dir.to_path_buf(),
@@ -141,7 +139,7 @@ impl RunOutput {
     /// Carries on the folder of a run that `sim` was resumed from (see
     /// [`Simulation::resume`]): the frames its collections list up to the
     /// checkpoint's step are kept, later ones are written again, every
-    /// `frame_interval` as for a new run. The extra frame a finished run
+    /// frame interval of the `scene` as for a new run. The extra frame a finished run
     /// writes at its end, off that interval, is dropped too: a run that
     /// never stopped would not have it. A folder without `points.pvd` is
     /// not a run's folder: an error. Returns the output and, when the
@@ -150,17 +148,15 @@ impl RunOutput {
     /// before the checkpoint are not this run's.
     pub fn resume(
         dir: &Path,
-        frame_interval: Real,
         scene: &Scene,
         sim: &Simulation,
         checkpoint: &Path,
     ) -> std::io::Result<(Self, Option<String>)> {
         let clock = sim.clock();
-        let frame_every = ((frame_interval / clock.dt).round() as u64).max(1);
+        let frame_every = frame_every(scene, sim);
         let on_interval = clock.step.is_multiple_of(frame_every);
         let kept = |path: &Path| -> std::io::Result<Vec<(Real, String)>> {
-            let mut frames = read_collection(path)
-                .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", path.display())))?;
+            let mut frames = read_collection(path).map_err(|e| located(path, e))?;
             frames.retain(|(time, _)| {
                 let before = *time < clock.time - 0.5 * clock.dt;
                 before || (on_interval && *time <= clock.time + 0.5 * clock.dt)
@@ -421,6 +417,14 @@ impl RunOutput {
             )
         })
     }
+}
+
+/// Steps between frames: the scene's frame interval (its default follows
+/// the run's `time.end`) in whole steps, at least one.
+fn frame_every(scene: &Scene, sim: &Simulation) -> u64 {
+    let clock = sim.clock();
+    let interval = scene.output.frame_interval_or_default(clock.end);
+    ((interval / clock.dt).round() as u64).max(1)
 }
 
 /// The scene's curves, each with the frame origin its block is placed at.
