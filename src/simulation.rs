@@ -196,6 +196,10 @@ impl Simulation {
     pub fn step(&mut self) -> Result<(), StepError> {
         self.initialize_schedule()?;
         self.schedule.run(&mut self.world);
+        // The world records every removal (a stage's plan is taken out and
+        // put back each step) until told the step is over, as an app's
+        // frame loop does; without this the record grows with every step.
+        self.world.clear_trackers();
         match self.world.resource_mut::<Diagnostics>().failure.take() {
             Some(failure) => Err(failure.into()),
             None => Ok(()),

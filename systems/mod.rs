@@ -35,7 +35,7 @@ pub use neighbours::rebuild_neighbour_lists;
 pub use nodal_solve::solve_nodal_momentum;
 pub use particle_to_grid::particle_to_grid;
 pub use rigid_bodies::move_rigid_blocks;
-pub use stages::{advance_stages, enter_stage, side_points};
+pub use stages::{advance_stages, dynamic_blocks_in_scene_order, enter_stage, side_points};
 pub use stress_update::update_stress;
 
 use crate::resources::UpdateScheme;

@@ -2,13 +2,14 @@
 //! it (after its duration, or once the model has settled).
 
 use crate::components::{
-    BlockId, BodyName, MaterialPoints, RigidMass, RigidMotion, RigidVelocity, bodies_in_scene_order,
+    BlockId, BodyName, MaterialPoints, RigidMass, RigidMotion, RigidVelocity,
+    bodies_in_scene_order, sort_into_scene_order,
 };
 use crate::math::{DVec2, Real};
 use crate::resources::{
     AppliedLoad, Clock, Gravity, Grid, Settings, StageEndReason, StageLog, StagePlan, StageRecord,
 };
-use crate::scene::{MotionSpec, Scene, Side, StageEnd, spawn_block};
+use crate::scene::{Side, StageEnd, spawn_block};
 use bevy_ecs::prelude::*;
 use std::collections::BTreeMap;
 
@@ -63,7 +64,7 @@ fn stage_end(world: &mut World, plan: &mut StagePlan) -> Option<StageEndReason> 
                         .sum::<Real>()
                 })
                 .sum::<Real>()
-                + dynamic_blocks_kinetic_energy(world, &plan.scene);
+                + dynamic_blocks_kinetic_energy(world, &plan.dynamic_blocks);
             plan.progress.peak_kinetic = plan.progress.peak_kinetic.max(kinetic);
             // Nothing has moved yet (a stage that starts at rest): the
             // model has not settled, it has not begun.
@@ -101,35 +102,32 @@ fn stage_end(world: &mut World, plan: &mut StagePlan) -> Option<StageEndReason> 
     }
 }
 
-/// The kinetic energy of the scene's dynamic blocks that are present,
-/// ½ m |v|² + ½ I ω², summed in scene order whatever order the world holds
-/// them in (a resumed run spawns them in another): a scan per block, and
-/// blocks are few. Kinematic blocks move as they are told: their motion is
-/// no sign of the model settling. A scene without dynamic blocks returns 0
-/// at once; with them, the query allocates its state once per step.
-fn dynamic_blocks_kinetic_energy(world: &mut World, scene: &Scene) -> Real {
-    let dynamic = |b: &crate::scene::BlockSpec| {
-        matches!(
-            b.motion,
-            MotionSpec::Dynamic { .. } | MotionSpec::DynamicWithMass { .. }
-        )
-    };
-    if !scene.blocks.iter().any(dynamic) {
-        return 0.0;
-    }
-    let mut query = world.query::<(&BlockId, &RigidMotion, &RigidMass, &RigidVelocity)>();
-    let mut total = 0.0;
-    for k in 0..scene.blocks.len() as u32 {
-        let energy = query
+/// The kinetic energy of the dynamic blocks the plan lists, ½ m |v|² +
+/// ½ I ω², summed in scene order (a resumed run spawns them in another
+/// order). Kinematic blocks move as they are told: their motion is no sign
+/// of the model settling, so the plan does not list them.
+fn dynamic_blocks_kinetic_energy(world: &World, blocks: &[Entity]) -> Real {
+    blocks
+        .iter()
+        .filter_map(|e| Some((world.get::<RigidMass>(*e)?, world.get::<RigidVelocity>(*e)?)))
+        .map(|(mass, v)| {
+            0.5 * mass.mass * v.linear.length_squared() + 0.5 * mass.inertia * v.angular * v.angular
+        })
+        .sum()
+}
+
+/// The dynamic blocks present in the world, in scene order.
+pub fn dynamic_blocks_in_scene_order(world: &mut World) -> Vec<Entity> {
+    let mut order = Vec::new();
+    let mut query = world.query::<(Entity, &BlockId, &RigidMotion)>();
+    sort_into_scene_order(
+        &mut order,
+        query
             .iter(world)
-            .find(|(id, motion, ..)| id.index == k && **motion == RigidMotion::Dynamic)
-            .map_or(0.0, |(_, _, mass, v)| {
-                0.5 * mass.mass * v.linear.length_squared()
-                    + 0.5 * mass.inertia * v.angular * v.angular
-            });
-        total += energy;
-    }
-    total
+            .filter(|(_, _, motion)| **motion == RigidMotion::Dynamic)
+            .map(|(e, id, _)| (id.index, e)),
+    );
+    order.into_iter().map(|(_, e)| e).collect()
 }
 
 /// Records the end of the current stage and enters the next, or ends the run.
@@ -264,6 +262,7 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
         _ => Vec::new(),
     };
     plan.bodies = bodies;
+    plan.dynamic_blocks = dynamic_blocks_in_scene_order(world);
     warnings
 }
 

@@ -163,6 +163,40 @@ fn a_dynamic_block_resumes_and_runs_on_to_a_later_end() {
     assert_same_run(&mut resumed, &mut straight);
 }
 
+#[test]
+fn a_kinetic_energy_stage_resumes_counting_its_dynamic_blocks() {
+    // The box enters in a second stage and falls; that stage ends once its
+    // kinetic energy has settled. The checkpoint is taken mid-fall, so the
+    // resumed stage must count the box (spawned again on resuming, absent
+    // from the scene's start) to end where the straight run's does.
+    let mut scene = common::load_scene("rigid_drop.ron");
+    let the_box = scene.blocks.iter_mut().find(|b| b.name == "box").unwrap();
+    the_box.present = false;
+    let mut drop = mpdem::scene::StageSpec::new(
+        "drop",
+        StageEnd::KineticEnergyRatio {
+            ratio: 1e-3,
+            max_time: 1.4,
+        },
+    );
+    drop.add_blocks = vec!["box".into()];
+    scene.stages = vec![
+        mpdem::scene::StageSpec::new("wait", StageEnd::Duration(0.01)),
+        drop,
+    ];
+    let file = checkpoint_file("drop");
+    let mut straight = build(&scene);
+    step_into_stage(&mut straight, 1, 500);
+    straight.write_checkpoint(&file).expect("checkpoint");
+    straight.run().expect("run");
+    let mut resumed = resume(&scene, &file);
+    resumed.run().expect("run");
+    let record = &straight.world().resource::<StageLog>().records[1];
+    assert_eq!(record.reason, StageEndReason::Condition, "{record:?}");
+    assert!(record.end - record.start > 0.14, "{record:?}");
+    assert_same_run(&mut resumed, &mut straight);
+}
+
 /// The pile at the reduced size of tests/pile.rs, driven for 0.1 s, then
 /// a fourth stage that removes the pile.
 fn reduced_pile() -> Scene {

@@ -216,22 +216,13 @@ fn a_kinetic_energy_stage_counts_the_dynamic_blocks() {
     // ends on its condition once the box has landed and settled, after the
     // 0.14 s fall, not on its first step and not at max_time.
     let mut scene = common::load_scene("rigid_drop.ron");
-    scene.stages = vec![mpdem::scene::StageSpec {
-        name: "drop".into(),
-        end: mpdem::scene::StageEnd::KineticEnergyRatio {
+    scene.stages = vec![mpdem::scene::StageSpec::new(
+        "drop",
+        mpdem::scene::StageEnd::KineticEnergyRatio {
             ratio: 1e-3,
             max_time: 1.4,
         },
-        pic_fraction: None,
-        grid_damping: None,
-        particle_damping: None,
-        gravity: None,
-        edges: None,
-        remove_blocks: Vec::new(),
-        add_blocks: Vec::new(),
-        block_velocities: Vec::new(),
-        tractions: Vec::new(),
-    }];
+    )];
     let mut sim = Simulation::from_scene(&scene).expect("scene");
     sim.run().expect("run");
     let record = &sim.world().resource::<StageLog>().records[0];

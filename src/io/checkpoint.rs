@@ -375,6 +375,7 @@ fn apply(
         && let Some(mut plan) = world.remove_resource::<StagePlan>()
     {
         plan.bodies = bodies.to_vec();
+        plan.dynamic_blocks = crate::systems::dynamic_blocks_in_scene_order(world);
         plan.progress = progress;
         carry_on_a_stage_cut_short(world, &mut plan.progress);
         world.insert_resource(plan);

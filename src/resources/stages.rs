@@ -14,6 +14,11 @@ pub struct StagePlan {
     /// The bodies in scene order, taken when the current stage began (the
     /// end conditions read them each step without querying the world).
     pub bodies: Vec<Entity>,
+    /// The dynamic blocks present, in scene order, taken when the current
+    /// stage began or the run resumed (blocks come and go only on a
+    /// stage's entry): the kinetic-energy end reads them each step
+    /// without querying the world.
+    pub dynamic_blocks: Vec<Entity>,
     /// Where the run is in the stages (what a checkpoint keeps).
     pub progress: StageProgress,
 }

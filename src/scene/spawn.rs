@@ -215,6 +215,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         let mut plan = StagePlan {
             scene: scene.clone(),
             bodies: Vec::new(),
+            dynamic_blocks: Vec::new(),
             progress: StageProgress::default(),
         };
         warnings.extend(crate::systems::enter_stage(&mut world, &mut plan, 0));

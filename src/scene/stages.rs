@@ -50,6 +50,26 @@ pub struct StageSpec {
     pub tractions: Vec<SurfaceTraction>,
 }
 
+impl StageSpec {
+    /// A stage named `name` that changes nothing and ends at `end` (for
+    /// scenes built in code: set the changes it makes on the result).
+    pub fn new(name: impl Into<String>, end: StageEnd) -> Self {
+        Self {
+            name: name.into(),
+            end,
+            pic_fraction: None,
+            grid_damping: None,
+            particle_damping: None,
+            gravity: None,
+            edges: None,
+            remove_blocks: Vec::new(),
+            add_blocks: Vec::new(),
+            block_velocities: Vec::new(),
+            tractions: Vec::new(),
+        }
+    }
+}
+
 /// A stage's changes to the grid's edge conditions, written like
 /// `GridSpec::edges` (e.g. `(left: Free)`): each edge given is set, each
 /// left out keeps the condition it had.
