@@ -246,9 +246,12 @@ impl Simulation {
         self.points(entity)
     }
 
-    /// FNV-1a hash of every point's state (position, velocity, deformation
-    /// gradient, volume, stress, strain) of every body in scene order, of
-    /// every block's pose and velocity in scene order, and of the clock. Equal hashes mean bit-identical states.
+    /// FNV-1a hash of the state every step evolves: each point's position,
+    /// velocity, deformation gradient, velocity gradient, affine gradient,
+    /// volume, stress and strain, body by body in scene order; each block's
+    /// pose and velocity in scene order; and the clock's step. (Columns a
+    /// step does not evolve, such as mass and initial position, are left
+    /// out.) Equal hashes mean bit-identical states.
     pub fn state_hash(&mut self) -> u64 {
         let mut hasher = StateHasher::default();
         let clock = self.clock();

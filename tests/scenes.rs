@@ -131,6 +131,72 @@ fn unknown_fields_are_refused() {
 }
 
 #[test]
+fn unknown_fields_inside_variants_are_refused() {
+    // A misspelt optional field inside an enum's variant (a block's motion,
+    // a shape, an initial state, a stage's end) would otherwise be skipped
+    // and its default taken without a word.
+    let cases = [
+        (
+            "pile_penetration.ron",
+            "Kinematic((linear: (0.0, 0.0), angular: 0.0))",
+            "Kinematic((linear: (0.0, 0.0), angluar: 0.0))",
+            "angluar",
+        ),
+        (
+            "rigid_drop.ron",
+            "Dynamic(density: 2500.0)",
+            "Dynamic(density: 2500.0, velocty: (linear: (0.0, 1.0)))",
+            "velocty",
+        ),
+        (
+            "rigid_drop.ron",
+            "Cuboid(half_extents: (0.2, 0.1))",
+            "Cuboid(half_extents: (0.2, 0.1), rounding: 0.01)",
+            "rounding",
+        ),
+        (
+            "rigid_drop.ron",
+            "gravity: (0.0, -9.81),",
+            "gravity: (0.0, -9.81), contact: (force_application: Traction(points: 5, pionts: 3)),",
+            "pionts",
+        ),
+        (
+            "wave_1d.ron",
+            "Rectangle(min: (0.0, 0.0), max: (1.0, 0.01))",
+            "Rectangle(min: (0.0, 0.0), max: (1.0, 0.01), points_per_cell: 4)",
+            "points_per_cell",
+        ),
+        (
+            "wave_1d.ron",
+            "Field(x: \"x*(1-x)\", y: \"0\")",
+            "Field(x: \"x*(1-x)\", y: \"0\", z: \"1\")",
+            "`z`",
+        ),
+        (
+            "column_collapse.ron",
+            "Geostatic(k0: 0.4554)",
+            "Geostatic(k0: 0.4554, surfce: Some(3.0))",
+            "surfce",
+        ),
+        (
+            "pile_penetration.ron",
+            "KineticEnergyRatio(ratio: 1e-10, max_time: 5.0)",
+            "KineticEnergyRatio(ratio: 1e-10, max_time: 5.0, ratoi: 1e-3)",
+            "ratoi",
+        ),
+    ];
+    for (file, from, to, field) in cases {
+        let text = std::fs::read_to_string(common::scene_path(file)).unwrap();
+        assert!(text.contains(from), "fixture text '{from}' not in {file}");
+        let edited = text.replacen(from, to, 1);
+        let line = edited[..edited.find(to).unwrap()].matches('\n').count() + 1;
+        let error = Scene::parse(&edited, Path::new("bad.ron"))
+            .expect_err(&format!("{file} with '{to}' accepted"));
+        assert_error(error, line, field);
+    }
+}
+
+#[test]
 fn unknown_material_names_are_refused() {
     let from = "material: \"bar\"";
     let e = parse_edited(from, "material: \"steel\"");
@@ -337,6 +403,23 @@ fn a_kinetic_energy_ratio_above_one_is_refused() {
         refusal.contains("expected a ratio in (0, 1], got 0"),
         "{refusal}"
     );
+}
+
+#[test]
+fn a_stage_built_in_code_is_checked_by_the_files_ranges() {
+    let scene = common::load_scene("geostatic_column.ron");
+    type Setter = fn(&mut mpdem::scene::StageSpec);
+    let cases: [(Setter, &str); 3] = [
+        (|s| s.pic_fraction = Some(1.5), "pic_fraction: "),
+        (|s| s.grid_damping = Some(-1.0), "grid_damping: "),
+        (|s| s.particle_damping = Some(1.2), "particle_damping: "),
+    ];
+    for (set, expected) in cases {
+        let mut bad = scene.clone();
+        set(&mut bad.stages[0]);
+        let refusal = bad.validate().expect_err(expected).to_string();
+        assert!(refusal.contains(expected), "{refusal}");
+    }
 }
 
 #[test]

@@ -67,6 +67,7 @@ impl Pose {
 
 /// Velocity of the block: of its centre of mass, and its spin (rad/s).
 #[derive(Component, Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct RigidVelocity {
     /// Velocity of the centre of mass (m/s).
     pub linear: DVec2,

@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 /// The imposition of contact forces on material points (scene
 /// `contact.force_application`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum ForceApplication {
     /// The force is a body force of the point, mapped with S_ip like
     /// gravity (the paper's BodyForce runs), plus the tangential force's

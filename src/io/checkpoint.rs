@@ -177,17 +177,20 @@ pub fn write_checkpoint(
         path: path.to_path_buf(),
         detail: e.to_string(),
     })?;
-    let mut partial = path.as_os_str().to_owned();
-    partial.push(".partial");
-    let partial = PathBuf::from(partial);
+    // Named like the outputs' temporary files, so a new run into the
+    // folder removes one that a killed run left.
+    let partial = crate::io::manifest::partial_path(path);
     let write = || -> std::io::Result<()> {
         let mut file = std::fs::File::create(&partial)?;
         file.write_all(&bytes)?;
         file.sync_all()
     };
-    write().map_err(|source| CheckpointError::Io {
-        path: partial.clone(),
-        source,
+    write().map_err(|source| {
+        std::fs::remove_file(&partial).ok();
+        CheckpointError::Io {
+            path: partial.clone(),
+            source,
+        }
     })?;
     std::fs::rename(&partial, path).map_err(|source| CheckpointError::Io {
         path: path.to_path_buf(),

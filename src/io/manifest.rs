@@ -28,6 +28,14 @@ pub const SIGNATURE: &str =
 /// writing is removed by the next run.
 pub const PARTIAL_PREFIX: &str = ".partial-";
 
+/// The temporary name `path` is written under before it is renamed into
+/// place: in the same folder, [`PARTIAL_PREFIX`] before its name (so its
+/// extension, which the PNG writer reads, is kept).
+pub fn partial_path(path: &Path) -> PathBuf {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+    path.with_file_name(format!("{PARTIAL_PREFIX}{}", name.unwrap_or_default()))
+}
+
 /// The files of a run's output folder, relative to it, as written to
 /// [`MANIFEST_FILE`].
 pub struct OutputManifest {
@@ -187,8 +195,12 @@ mod tests {
         drop(resumed);
         let list = std::fs::read_to_string(dir.join(MANIFEST_FILE)).unwrap();
         assert_eq!(list.lines().count(), 1 + 4, "each file listed once: {list}");
-        // A temporary file a killed run left, and a folder named in the list.
+        // Temporary files a killed run left (a frame, the checkpoint), and a
+        // folder named in the list.
         std::fs::write(dir.join("vtk/.partial-points_00003.vtu"), "half").unwrap();
+        let checkpoint = partial_path(&dir.join("checkpoint.bin"));
+        assert_eq!(checkpoint, dir.join(".partial-checkpoint.bin"));
+        std::fs::write(&checkpoint, "half").unwrap();
         std::fs::create_dir(dir.join("kept")).unwrap();
         std::fs::write(dir.join("kept/inside.txt"), "the user's").unwrap();
         OutputManifest::resume(&dir)
@@ -197,8 +209,9 @@ mod tests {
             .unwrap();
 
         let (_, removed) = OutputManifest::start(&dir).unwrap();
-        assert_eq!(removed, 5);
+        assert_eq!(removed, 6);
         assert!(!dir.join("vtk/.partial-points_00003.vtu").exists());
+        assert!(!checkpoint.exists());
         assert!(
             dir.join("kept/inside.txt").is_file(),
             "a listed folder was touched"

@@ -2,7 +2,7 @@
 //! during the run; CSV series and PNG plots at the end.
 
 use super::csv;
-use super::manifest::{OutputManifest, PARTIAL_PREFIX, located};
+use super::manifest::{OutputManifest, located, partial_path};
 use super::plot::{Series, SeriesStyle, plot_points, plot_series};
 use super::vtk::{
     PointFrame, read_collection, write_collection, write_outlines, write_point_frame,
@@ -78,8 +78,7 @@ impl Folder {
     ) -> std::io::Result<()> {
         self.manifest.record(relative)?;
         let path = self.dir.join(relative);
-        let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
-        let partial = path.with_file_name(format!("{PARTIAL_PREFIX}{}", name.unwrap_or_default()));
+        let partial = partial_path(&path);
         let written = writer(&partial).and_then(|()| std::fs::rename(&partial, &path));
         written.map_err(|e| {
             std::fs::remove_file(&partial).ok();

@@ -91,6 +91,7 @@ impl<T: ElasticPlastic> ConstitutiveModel for T {
 
 /// The constitutive models a scene can choose.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum MaterialModel {
     /// Isotropic linear elasticity with a Jaumann stress rate.
     LinearElastic(LinearElastic),

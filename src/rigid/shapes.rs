@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 /// The shape of a rigid block in its own frame (the block's pose places
 /// that frame in the world).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum BlockShape {
     /// A rectangle centred on the frame origin.
     Cuboid {

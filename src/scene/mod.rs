@@ -62,9 +62,9 @@ pub struct Scene {
     /// Contact settings. Default: see [`ContactSettings`].
     #[serde(default)]
     pub contact: ContactSettings,
-    /// DEM contact laws between pairs of bodies (section 3.3). Bodies with no
-    /// law between them do not interact: each has its own grid layer.
-    /// Default: none.
+    /// DEM contact laws between pairs of bodies or groups (section 3.3).
+    /// Bodies of different groups with no law between them do not interact:
+    /// each group (or body without one) has its own grid layer. Default: none.
     #[serde(default)]
     pub body_contacts: Vec<BodyContactSpec>,
     /// Watched points. Default: none.
@@ -187,8 +187,10 @@ pub struct BodySpec {
     /// Velocity constraints on nodes of this body's layer. Default: none.
     #[serde(default)]
     pub constraints: Vec<RegionConstraint>,
-    /// Radius of each point's DEM disk (m), > 0. Default: half the point
-    /// spacing, h / (2 n), so the disks reach the body's outline.
+    /// Radius of each point's DEM disk (m), > 0, at most half a cell in a
+    /// scene with body contacts. Default: half the point spacing, h / (2 n),
+    /// so the disks reach the body's outline (for a point list with
+    /// volumes, √V / 2: the disk reaches the sides of the point's square).
     #[serde(default)]
     pub contact_radius: Option<Real>,
     /// A body force per unit mass on this body, on top of gravity, e.g.
@@ -236,6 +238,7 @@ fn default_present() -> bool {
 
 /// How a block moves.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum MotionSpec {
     /// Never moves.
     Fixed,
@@ -270,6 +273,7 @@ fn default_points_per_cell() -> u32 {
 
 /// Initial velocity of a body's points.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum InitialVelocity {
     /// The same velocity everywhere (m/s).
     Constant(DVec2),
@@ -290,6 +294,7 @@ impl Default for InitialVelocity {
 
 /// Initial stress of a body.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum InitialStress {
     /// At-rest state under gravity: σ_yy = −ρ |g_y| (surface − y),
     /// σ_xx = σ_zz = K0 σ_yy, no shear (compression negative).

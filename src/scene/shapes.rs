@@ -9,6 +9,7 @@ use std::f64::consts::PI;
 /// grid cells (points_per_cell × points_per_cell per cell) that fall inside,
 /// except for `Points`, which lists them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Shape {
     /// An axis-aligned rectangle.
     Rectangle {

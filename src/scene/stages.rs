@@ -110,11 +110,14 @@ fn some_edge<'de, D: Deserializer<'de>>(d: D) -> Result<Option<EdgeCondition>, D
 
 /// When a stage ends.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum StageEnd {
     /// After this long (s).
     Duration(#[serde(deserialize_with = "rules::de_positive")] Real),
-    /// When the bodies' kinetic energy has fallen to `ratio` of the largest
-    /// it reached during the stage, or after `max_time` (s) with a warning.
+    /// When the kinetic energy of the bodies and the dynamic blocks has
+    /// fallen to `ratio` of the largest it reached during the stage (not
+    /// before something has moved: a stage that starts at rest waits), or
+    /// after `max_time` (s) with a warning.
     KineticEnergyRatio {
         /// Threshold ratio in (0, 1].
         #[serde(deserialize_with = "rules::de_ratio")]

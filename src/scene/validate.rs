@@ -610,6 +610,22 @@ impl Scene {
                 .end
                 .check()
                 .map_err(|e| fail("end", format!("end: {e}")))?;
+            // The same ranges as the file's parser applies (rules.rs), for
+            // stages built in code.
+            let ranges = [
+                (
+                    "pic_fraction",
+                    stage.pic_fraction,
+                    rules::fraction as fn(Real) -> _,
+                ),
+                ("grid_damping", stage.grid_damping, rules::damping),
+                ("particle_damping", stage.particle_damping, rules::damping),
+            ];
+            for (field, value, rule) in ranges {
+                if let Some(v) = value {
+                    rule(v).map_err(|e| fail(field, format!("{field}: {e}")))?;
+                }
+            }
             if let Some(g) = stage.gravity
                 && !g.is_finite()
             {
