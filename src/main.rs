@@ -278,7 +278,7 @@ fn run(
     };
     let checkpoint_steps = checkpoints
         .every
-        .map(|t| ((t / clock.dt).round() as u64).max(1));
+        .map(|t| mpdem::scene::whole_steps(t, clock.dt));
     let total = clock.total_steps();
     let progress = progress_bar(total, quiet, "{bar:40} {msg} elapsed {elapsed} ETA {eta}");
     progress.set_position(clock.step);
@@ -415,16 +415,24 @@ fn bench_scene(path: &Path, warmup: u64, steps: u64) -> Result<(), String> {
         let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
         let t = bench::measure(&mut sim, warmup, steps).map_err(|e| e.to_string())?;
         println!(
-            "{}{label}: {} points, {} steps after {warmup}, {} threads: {:.3} s, {:.2} M particle-updates/s",
+            "{}{label}: {} points, {} steps after {warmup}, {}: {:.3} s, {:.2} M particle-updates/s",
             sim.name(),
             t.points,
             t.steps,
-            rayon::current_num_threads(),
+            threads_label(),
             t.seconds,
             t.updates_per_second() / 1e6
         );
     }
     Ok(())
+}
+
+/// "1 thread" or "n threads", for the pool the bench runs on.
+fn threads_label() -> String {
+    match rayon::current_num_threads() {
+        1 => "1 thread".into(),
+        n => format!("{n} threads"),
+    }
 }
 
 fn run_bench(points: usize, warmup: u64, steps: u64) -> Result<(), String> {
@@ -443,10 +451,10 @@ fn run_bench(points: usize, warmup: u64, steps: u64) -> Result<(), String> {
         let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
         let t = bench::measure(&mut sim, warmup, steps).map_err(|e| e.to_string())?;
         println!(
-            "{label}: {} points, {} steps, {} threads: {:.3} s, {:.2} M particle-updates/s",
+            "{label}: {} points, {} steps, {}: {:.3} s, {:.2} M particle-updates/s",
             t.points,
             t.steps,
-            rayon::current_num_threads(),
+            threads_label(),
             t.seconds,
             t.updates_per_second() / 1e6
         );

@@ -143,7 +143,7 @@ fn add_traction(
 
 /// Adds `force` to the four nodes of the cell holding `at`, weighted by the
 /// bilinear hat functions (a partition of unity, so the whole force arrives).
-fn add_with_hat_functions(grid: &Grid, layer: &mut GridLayer, at: DVec2, force: DVec2) {
+pub(crate) fn add_with_hat_functions(grid: &Grid, layer: &mut GridLayer, at: DVec2, force: DVec2) {
     let [nx, ny] = grid.nodes();
     let s = (at - grid.origin) / grid.cell_size;
     let i = (s.x.floor().max(0.0) as usize).min(nx - 2);

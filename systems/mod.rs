@@ -20,6 +20,7 @@ mod particle_to_grid;
 mod rigid_bodies;
 mod stages;
 mod stress_update;
+mod surface_loads;
 
 pub use body_contact::compute_body_contacts;
 pub use boundary::rebuild_node_constraints;
@@ -37,6 +38,7 @@ pub use particle_to_grid::particle_to_grid;
 pub use rigid_bodies::move_rigid_blocks;
 pub use stages::{advance_stages, dynamic_blocks_in_scene_order, enter_stage, side_points};
 pub use stress_update::update_stress;
+pub use surface_loads::apply_surface_loads;
 
 use crate::resources::UpdateScheme;
 use bevy_ecs::prelude::*;
@@ -61,7 +63,8 @@ pub enum MpmSystems {
     Neighbours,
     /// Detect contacts and compute DEM forces (l. 9).
     Contact,
-    /// Contact forces to points and nodes, reactions to blocks (l. 10).
+    /// Contact forces to points and nodes, reactions to blocks (l. 10), and
+    /// the stages' surface tractions (eq. 7b).
     ContactTransfer,
     /// Mass and momentum to each body's layer (l. 12).
     ParticleToGrid,
@@ -131,7 +134,9 @@ pub fn add_default_systems(schedule: &mut Schedule, scheme: UpdateScheme) {
         (compute_rigid_contacts, compute_body_contacts)
             .chain()
             .in_set(MpmSystems::Contact),
-        transfer_contact_forces.in_set(MpmSystems::ContactTransfer),
+        (transfer_contact_forces, apply_surface_loads)
+            .chain()
+            .in_set(MpmSystems::ContactTransfer),
         particle_to_grid.in_set(MpmSystems::ParticleToGrid),
         update_stress(scheme).in_set(MpmSystems::StressUpdate),
         solve_nodal_momentum.in_set(MpmSystems::NodalSolve),

@@ -150,10 +150,18 @@ fn finish_stage(world: &mut World, plan: &mut StagePlan, reason: StageEndReason)
             stage.end.max_time(),
             clock.time
         )),
-        StageEndReason::SceneEnd => log.warnings.push(format!(
-            "time.end = {} s came during stage '{}'; later stages were not run",
-            clock.end, stage.name
-        )),
+        StageEndReason::SceneEnd => {
+            let later = plan.scene.stages.len() - 1 - plan.progress.current;
+            let rest = match later {
+                0 => String::new(),
+                1 => "; the stage after it was not run".into(),
+                n => format!("; the {n} stages after it were not run"),
+            };
+            log.warnings.push(format!(
+                "time.end = {} s came during stage '{}' before it ended: the stage was cut short{rest}",
+                clock.end, stage.name
+            ));
+        }
         StageEndReason::Duration | StageEndReason::Condition => {}
     }
     let next = plan.progress.current + 1;
@@ -219,26 +227,17 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
         }) else {
             continue;
         };
-        let Some(mut points) = world.get_mut::<MaterialPoints>(body) else {
+        let Some(points) = world.get::<MaterialPoints>(body) else {
             continue;
         };
-        if let Some(k) = plan
-            .progress
+        // A new traction on a side replaces the one there.
+        plan.progress
             .loads
-            .iter()
-            .position(|l| l.body == body && l.side == traction.side)
-        {
-            for (p, f) in plan.progress.loads.remove(k).forces {
-                points.external_force[p as usize] -= f;
-            }
-        }
-        let forces: Vec<(u32, DVec2)> = side_points(&points, traction.side)
+            .retain(|l| !(l.body == body && l.side == traction.side));
+        let forces: Vec<(u32, DVec2)> = side_points(points, traction.side)
             .into_iter()
             .map(|(p, width)| (p, traction.traction * width))
             .collect();
-        for &(p, f) in &forces {
-            points.external_force[p as usize] += f;
-        }
         plan.progress.loads.push(AppliedLoad {
             body,
             side: traction.side,

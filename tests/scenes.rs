@@ -250,8 +250,9 @@ fn non_finite_values_are_refused() {
 fn a_time_step_above_the_cfl_limit_warns_with_the_limit() {
     let mut scene = common::load_scene("wave_1d.ron");
     scene.time.dt = 1e-3;
+    scene.output.probe_interval = Some(1e-3);
     let sim = Simulation::from_scene(&scene).unwrap();
-    assert_eq!(sim.warnings().len(), 1);
+    assert_eq!(sim.warnings().len(), 1, "{:?}", sim.warnings());
     assert!(
         sim.warnings()[0].contains("CFL limit h / c = 5e-4 s"),
         "{}",
@@ -435,6 +436,28 @@ fn an_end_off_the_time_step_warns_with_the_steps_taken() {
         "{}",
         sim.warnings()[0]
     );
+}
+
+#[test]
+fn output_intervals_off_the_time_step_warn_with_the_steps_taken() {
+    let mut scene = common::load_scene("wave_1d.ron");
+    scene.output.frame_interval = Some(2.5e-4);
+    scene.output.probe_interval = Some(1.4e-4);
+    let sim = Simulation::from_scene(&scene).unwrap();
+    let warnings = sim.warnings().join("\n");
+    assert!(
+        warnings.contains("output.frame_interval = 2.5e-4 s is not a multiple of time.dt = 1e-4 s: frames are written every 3 step(s), 3e-4 s"),
+        "{warnings}"
+    );
+    assert!(
+        warnings.contains("output.probe_interval = 1.4e-4 s is not a multiple of time.dt = 1e-4 s: probes and energy are sampled every 1 step(s), 1e-4 s"),
+        "{warnings}"
+    );
+    // Multiples of the step, and the defaults, say nothing.
+    scene.output.frame_interval = Some(3e-4);
+    scene.output.probe_interval = None;
+    let sim = Simulation::from_scene(&scene).unwrap();
+    assert!(sim.warnings().is_empty(), "{:?}", sim.warnings());
 }
 
 #[test]

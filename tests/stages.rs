@@ -34,6 +34,34 @@ fn a_stage_that_does_not_settle_in_time_warns_and_the_next_one_runs() {
 }
 
 #[test]
+fn a_stage_the_end_time_cuts_short_is_named_with_the_stages_not_run() {
+    let mut scene = common::load_scene("geostatic_column.ron");
+    scene.stages[0].end = mpdem::scene::StageEnd::Duration(0.02);
+    scene.stages[1].end = mpdem::scene::StageEnd::Duration(0.02);
+    for (end, cut, expected) in [
+        (
+            0.01,
+            0,
+            "stage 'geostatic' before it ended: the stage was cut short; the stage after it was not run",
+        ),
+        (
+            0.03,
+            1,
+            "stage 'surcharge' before it ended: the stage was cut short",
+        ),
+    ] {
+        scene.time.end = end;
+        let mut sim = Simulation::from_scene(&scene).expect("scene");
+        sim.run().expect("run");
+        let log = sim.world().resource::<StageLog>();
+        assert_eq!(log.records.len(), cut + 1);
+        assert_eq!(log.records[cut].reason, StageEndReason::SceneEnd);
+        assert_eq!(log.warnings.len(), 1, "{:?}", log.warnings);
+        assert!(log.warnings[0].ends_with(expected), "{:?}", log.warnings);
+    }
+}
+
+#[test]
 fn a_stress_change_stage_ends_once_the_column_has_settled() {
     // From rest the stresses only begin to change: the first steps change
     // them by less than any useful threshold, so the condition counts only

@@ -46,8 +46,9 @@ use std::path::{Path, PathBuf};
 const MAGIC: &[u8; 8] = b"MPDEMCK\0";
 
 /// The layout of the stored state; a checkpoint of another layout is
-/// refused rather than misread.
-const FORMAT: u32 = 8;
+/// refused rather than misread. (9: surface tractions no longer held in
+/// the points' external forces.)
+const FORMAT: u32 = 9;
 
 /// Why a checkpoint could not be written or resumed.
 #[derive(Debug, thiserror::Error)]

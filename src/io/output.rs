@@ -422,8 +422,7 @@ impl RunOutput {
 /// the run's `time.end`) in whole steps, at least one.
 fn frame_every(scene: &Scene, sim: &Simulation) -> u64 {
     let clock = sim.clock();
-    let interval = scene.output.frame_interval_or_default(clock.end);
-    ((interval / clock.dt).round() as u64).max(1)
+    scene.output.frame_every(clock.end, clock.dt)
 }
 
 /// The scene's curves, each with the frame origin its block is placed at.

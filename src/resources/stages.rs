@@ -44,7 +44,8 @@ pub struct StageProgress {
     pub finished: bool,
 }
 
-/// The point forces a surface traction put into `external_force`.
+/// The forces a surface traction puts on a body's outermost points, at
+/// the outer edges of their domains (`systems::apply_surface_loads`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AppliedLoad {
     /// The body.

@@ -5,6 +5,7 @@
 //! default and why. Units are SI; the model is plane strain with unit
 //! thickness, so masses, forces and energies are per metre.
 
+mod contact_stability;
 mod layout_warnings;
 mod location;
 pub mod point_file;
@@ -391,6 +392,22 @@ impl OutputSpec {
     pub fn probe_interval_or_default(&self, end: Real) -> Real {
         self.probe_interval.unwrap_or(end / 1000.0)
     }
+
+    /// Steps between frames of a run ending at `end` with steps of `dt`.
+    pub fn frame_every(&self, end: Real, dt: Real) -> u64 {
+        whole_steps(self.frame_interval_or_default(end), dt)
+    }
+
+    /// Steps between probe and energy samples of a run ending at `end` with
+    /// steps of `dt`.
+    pub fn probe_every(&self, end: Real, dt: Real) -> u64 {
+        whole_steps(self.probe_interval_or_default(end), dt)
+    }
+}
+
+/// An output interval in whole steps of `dt`, the nearest, at least one.
+pub fn whole_steps(interval: Real, dt: Real) -> u64 {
+    ((interval / dt).round() as u64).max(1)
 }
 
 /// Errors of loading or validating a scene; each says where and what was expected.

@@ -1,5 +1,6 @@
 //! Turning a validated scene into a bevy `World`.
 
+use super::contact_stability::body_contact_stability_warnings;
 use super::layout_warnings::{body_overlap_warnings, free_edge_warnings};
 use super::step_warnings::off_step_warnings;
 use super::{InitialStress, InitialVelocity, Scene, SceneError, SourceLocation, VelocityField};
@@ -90,8 +91,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
     )?);
     let mut probes = Probes {
         probes: Vec::new(),
-        every: ((scene.output.probe_interval_or_default(clock.end) / clock.dt).round() as u64)
-            .max(1),
+        every: scene.output.probe_every(clock.end, clock.dt),
         samples: Vec::new(),
     };
     for spec in &scene.probes {
@@ -199,6 +199,11 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         let gravity = first.and_then(|s| s.gravity).unwrap_or(scene.gravity);
         warnings.extend(free_edge_warnings(&start, gravity, &placed));
         warnings.extend(body_overlap_warnings(&placed, &laws));
+        warnings.extend(body_contact_stability_warnings(
+            scene.time.dt,
+            &placed,
+            &laws,
+        ));
     }
     // Room for every sample, as for the probes: recording never allocates.
     world.insert_resource(BodyPairLog {

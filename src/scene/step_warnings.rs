@@ -1,5 +1,6 @@
-//! Warnings about durations the run cannot give exactly: a `time.end` or a
-//! stage `Duration` that is not a whole number of time steps.
+//! Warnings about durations the run cannot give exactly: a `time.end`, a
+//! stage `Duration` or an output interval that is not a whole number of
+//! time steps.
 
 use super::{Scene, StageEnd};
 use crate::math::Real;
@@ -10,6 +11,13 @@ use crate::resources::Clock;
 /// says so: a thousandth, far above the round-off of a duration meant as a
 /// multiple of Δt, far below one step of a duration a few steps long.
 const OFF_STEP_WARNING: Real = 1e-3;
+
+/// `steps` × Δt rounded to 12 significant digits, so that a message says
+/// 3e-4 s and not 3.0000000000000003e-4 s.
+fn steps_time(steps: u64, dt: Real) -> Real {
+    let time = steps as Real * dt;
+    format!("{time:.11e}").parse().unwrap_or(time)
+}
 
 /// A warning for a `time.end`, and for each stage `Duration`, more than
 /// [`OFF_STEP_WARNING`] of itself away from the steps the run takes for it,
@@ -22,7 +30,7 @@ pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<String> {
             "time.end = {:e} s is not a multiple of time.dt = {:e} s: the run takes the nearest whole number of steps, {steps}, to t = {:e} s",
             clock.end,
             clock.dt,
-            steps as Real * clock.dt
+            steps_time(steps, clock.dt)
         ));
     }
     for stage in &scene.stages {
@@ -41,7 +49,7 @@ pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<String> {
                 } else {
                     format!(
                         "{stage_steps} step(s), {:e} s",
-                        stage_steps as Real * clock.dt
+                        steps_time(stage_steps, clock.dt)
                     )
                 };
                 warnings.push(format!(
@@ -49,6 +57,33 @@ pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<String> {
                     stage.name, clock.dt
                 ));
             }
+        }
+    }
+    // Intervals the scene gives; the defaults (a fraction of the end) are
+    // rounded as documented.
+    let intervals = [
+        (
+            "frame_interval",
+            scene.output.frame_interval,
+            "frames are written",
+        ),
+        (
+            "probe_interval",
+            scene.output.probe_interval,
+            "probes and energy are sampled",
+        ),
+    ];
+    for (field, interval, what) in intervals {
+        let Some(interval) = interval else {
+            continue;
+        };
+        let every = super::whole_steps(interval, clock.dt);
+        if (every as Real * clock.dt - interval).abs() > OFF_STEP_WARNING * interval {
+            warnings.push(format!(
+                "output.{field} = {interval:e} s is not a multiple of time.dt = {:e} s: {what} every {every} step(s), {:e} s",
+                clock.dt,
+                steps_time(every, clock.dt)
+            ));
         }
     }
     warnings
