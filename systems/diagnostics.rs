@@ -101,7 +101,14 @@ type EnergyScratch = (
     Vec<(u32, Entity)>,
 );
 
-/// Records probes and energies every `Probes::every` steps, unless the step
+/// Whether this step is sampled: every `Probes::every` steps, and the
+/// run's last step (its end, or where its last stage ended it), so the
+/// series end with the state the run ends in.
+fn sample_due(clock: &Clock, probes: &Probes) -> bool {
+    clock.step.is_multiple_of(probes.every.max(1)) || clock.finished()
+}
+
+/// Records probes and energies at the steps [`sample_due`] picks, unless the step
 /// failed (a broken state is never recorded).
 ///
 /// Reads: `Clock`, `Diagnostics`, `Gravity`, `MaterialPoints`, `Material`,
@@ -127,7 +134,7 @@ pub fn record_probes_and_energy(
     )>,
     blocks: Query<(Entity, &BlockId, &BlockContacts, &BlockContactLaw)>,
 ) {
-    if diagnostics.failure.is_some() || !clock.step.is_multiple_of(probes.every.max(1)) {
+    if diagnostics.failure.is_some() || !sample_due(&clock, &probes) {
         return;
     }
     let (order, sums, block_order) = &mut *scratch;
@@ -150,8 +157,8 @@ pub fn record_probes_and_energy(
 }
 
 /// Records the contacts of every pair of bodies with a law (resultant,
-/// count, zone half-width, now and in the undeformed bodies) with the
-/// probes' period, unless the step failed.
+/// count, zone half-width, now and in the undeformed bodies) when the
+/// probes are sampled ([`sample_due`]), unless the step failed.
 ///
 /// Reads: `Clock`, `Diagnostics`, `Probes::every`, `BodyContacts`,
 /// `BodyIndex`, `MaterialPoints::initial_position`. Writes: `BodyPairLog`.
@@ -164,7 +171,7 @@ pub fn record_body_pairs(
     mut log: ResMut<BodyPairLog>,
     mut tallies: Local<Vec<PairTally>>,
 ) {
-    if diagnostics.failure.is_some() || !clock.step.is_multiple_of(probes.every.max(1)) {
+    if diagnostics.failure.is_some() || !sample_due(&clock, &probes) {
         return;
     }
     let time = clock.time;
@@ -197,8 +204,8 @@ pub fn record_body_pairs(
     );
 }
 
-/// Records every block's reaction, pose and velocity with the probes' period,
-/// blocks in scene order, unless the step failed.
+/// Records every block's reaction, pose and velocity when the probes are
+/// sampled ([`sample_due`]), blocks in scene order, unless the step failed.
 ///
 /// Reads: `Clock`, `Diagnostics`, `Probes::every`, block components. Writes: `BlockLog`.
 pub fn record_blocks(
@@ -216,10 +223,7 @@ pub fn record_blocks(
         &RigidVelocity,
     )>,
 ) {
-    if blocks.is_empty()
-        || diagnostics.failure.is_some()
-        || !clock.step.is_multiple_of(probes.every.max(1))
-    {
+    if blocks.is_empty() || diagnostics.failure.is_some() || !sample_due(&clock, &probes) {
         return;
     }
     sort_into_scene_order(&mut order, blocks.iter().map(|(e, id, ..)| (id.index, e)));

@@ -146,10 +146,13 @@ pub fn add_default_systems(schedule: &mut Schedule, scheme: UpdateScheme) {
             check_finite,
             account_contact_work,
             advance_clock,
+            // Before the records: a sample at a stage's change shows the
+            // state the step ends in, as that step's frame does, and the
+            // step on which the last stage ends the run is sampled.
+            advance_stages,
             record_probes_and_energy,
             record_blocks,
             record_body_pairs,
-            advance_stages,
         )
             .chain()
             .in_set(MpmSystems::Diagnostics),

@@ -197,6 +197,35 @@ fn a_kinetic_energy_stage_resumes_counting_its_dynamic_blocks() {
     assert_same_run(&mut resumed, &mut straight);
 }
 
+#[test]
+fn a_run_that_ended_between_samples_resumes_without_its_end_sample() {
+    // The first run ends at step 2 505, between two samples (every 10
+    // steps), and samples its end; resumed with a later end, that sample
+    // goes, as a run that never stopped has none there.
+    let mut short = common::load_scene("rigid_tip.ron");
+    short.time.end = 0.2505;
+    short.output.probe_interval = Some(1e-3);
+    let mut long = short.clone();
+    long.time.end = 0.35;
+    let file = checkpoint_file("tip-between");
+    let mut first = build(&short);
+    first.run().expect("run");
+    let last = |sim: &Simulation| {
+        sim.world()
+            .resource::<EnergyLog>()
+            .samples
+            .last()
+            .map(|s| s.time)
+    };
+    assert_eq!(last(&first), Some(first.clock().time));
+    first.write_checkpoint(&file).expect("checkpoint");
+    let mut resumed = resume(&long, &file);
+    resumed.run().expect("run");
+    let mut straight = build(&long);
+    straight.run().expect("run");
+    assert_same_run(&mut resumed, &mut straight);
+}
+
 /// The pile at the reduced size of tests/pile.rs, driven for 0.1 s, then
 /// a fourth stage that removes the pile.
 fn reduced_pile() -> Scene {

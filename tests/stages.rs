@@ -62,6 +62,25 @@ fn a_stage_the_end_time_cuts_short_is_named_with_the_stages_not_run() {
 }
 
 #[test]
+fn the_step_on_which_the_last_stage_ends_the_run_is_sampled() {
+    // The column's stages end on their condition, between two samples (50
+    // steps apart): the records still end with the state the run ends in.
+    let scene = common::load_scene("geostatic_column.ron");
+    let mut sim = Simulation::from_scene(&scene).expect("scene");
+    sim.run().expect("run");
+    let end = sim.clock().time;
+    assert!(
+        !sim.clock().step.is_multiple_of(50),
+        "the run ends on a sample anyway: {end}"
+    );
+    let world = sim.world();
+    let energy = &world.resource::<mpdem::resources::EnergyLog>().samples;
+    assert_eq!(energy.last().map(|s| s.time), Some(end));
+    let probes = &world.resource::<mpdem::resources::Probes>().samples;
+    assert_eq!(probes.last().map(|s| s.time), Some(end));
+}
+
+#[test]
 fn a_stress_change_stage_ends_once_the_column_has_settled() {
     // From rest the stresses only begin to change: the first steps change
     // them by less than any useful threshold, so the condition counts only

@@ -384,7 +384,35 @@ fn apply(
         carry_on_a_stage_cut_short(world, &mut plan.progress);
         world.insert_resource(plan);
     }
+    drop_the_end_sample(world);
     Ok(())
+}
+
+/// A run samples its last step even off the sampling interval. If the
+/// resumed run goes on past that step, a run that never stopped has no
+/// sample there: it is taken back from every record.
+fn drop_the_end_sample(world: &mut World) {
+    let clock = *world.resource::<Clock>();
+    let every = world.resource::<Probes>().every.max(1);
+    if clock.finished() || clock.step.is_multiple_of(every) {
+        return;
+    }
+    let before = clock.time - 0.5 * clock.dt;
+    world
+        .resource_mut::<Probes>()
+        .samples
+        .retain(|s| s.time < before);
+    world
+        .resource_mut::<EnergyLog>()
+        .samples
+        .retain(|s| s.time < before);
+    let mut blocks = world.resource_mut::<BlockLog>();
+    blocks.samples.retain(|s| s.time < before);
+    blocks.parts.retain(|s| s.time < before);
+    world
+        .resource_mut::<BodyPairLog>()
+        .samples
+        .retain(|s| s.time < before);
 }
 
 /// A stage still running when the run reached its `time.end` was ended

@@ -126,9 +126,10 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
             point: nearest,
         });
     }
-    // Room for every sample of the run, so that recording never allocates
-    // inside the step.
-    let samples = (clock.total_steps() / probes.every + 1) as usize;
+    // Room for every sample of the run (the first, one per interval, and
+    // one at the end when it falls between), so that recording never
+    // allocates inside the step.
+    let samples = (clock.total_steps() / probes.every + 2) as usize;
     probes.samples.reserve_exact(samples * probes.probes.len());
     probes.record(0.0, |e| world.get::<MaterialPoints>(e));
     let initial_energy = EnergySample::of(
