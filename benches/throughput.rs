@@ -3,7 +3,7 @@
 //! thread pool. Run with `cargo bench` (release profile).
 
 use mpdem::Simulation;
-use mpdem::bench::{elastic_block_scene, measure};
+use mpdem::bench::{elastic_block_scene, measure, threads_label};
 
 fn main() {
     for points in [10_000, 40_000, 160_000] {
@@ -13,9 +13,9 @@ fn main() {
             .and_then(|mut sim| measure(&mut sim, 5, 100).map_err(|e| e.to_string()));
         match result {
             Ok(t) => println!(
-                "elastic block, {} points, {} threads: {:.2} M particle-updates/s",
+                "elastic block, {} points, {}: {:.2} M particle-updates/s",
                 t.points,
-                rayon::current_num_threads(),
+                threads_label(),
                 t.updates_per_second() / 1e6
             ),
             Err(e) => eprintln!("bench failed: {e}"),

@@ -13,6 +13,14 @@ use crate::scene::{
 use crate::simulation::{Simulation, StepError};
 use std::time::Instant;
 
+/// "1 thread" or "n threads": the pool the bench runs on, for its report.
+pub fn threads_label() -> String {
+    match rayon::current_num_threads() {
+        1 => "1 thread".into(),
+        n => format!("{n} threads"),
+    }
+}
+
 /// A square elastic block of about `points` points (2 × 2 per cell, 0.01 m
 /// cells) resting on the fixed base of a grid two cells wider on each side.
 pub fn elastic_block_scene(points: usize) -> Scene {

@@ -282,10 +282,7 @@ fn run(
     let total = clock.total_steps();
     let progress = progress_bar(total, quiet, "{bar:40} {msg} elapsed {elapsed} ETA {eta}");
     progress.set_position(clock.step);
-    progress.set_message(format!(
-        "step {}/{total} t = {:.4e} s",
-        clock.step, clock.time
-    ));
+    progress.set_message(progress_message(&sim, total));
     progress.reset_eta();
     let started = std::time::Instant::now();
     let interrupted = stop_on_ctrl_c();
@@ -312,19 +309,10 @@ fn run(
             break;
         }
         if now.step % 64 == 0 || now.finished() {
-            let stage = sim.world().get_resource::<StagePlan>().and_then(|plan| {
-                let spec = plan.scene.stages.get(plan.progress.current)?;
-                Some(format!(", stage '{}'", spec.name))
-            });
             // The message carries the step with its time (the bar's own
             // position may be drawn a refresh apart from the message).
             progress.set_position(now.step);
-            progress.set_message(format!(
-                "step {}/{total} t = {:.4e} s{}",
-                now.step,
-                now.time,
-                stage.unwrap_or_default()
-            ));
+            progress.set_message(progress_message(&sim, total));
         }
     }
     progress.finish_and_clear();
@@ -419,7 +407,7 @@ fn bench_scene(path: &Path, warmup: u64, steps: u64) -> Result<(), String> {
             sim.name(),
             t.points,
             t.steps,
-            threads_label(),
+            bench::threads_label(),
             t.seconds,
             t.updates_per_second() / 1e6
         );
@@ -427,12 +415,22 @@ fn bench_scene(path: &Path, warmup: u64, steps: u64) -> Result<(), String> {
     Ok(())
 }
 
-/// "1 thread" or "n threads", for the pool the bench runs on.
-fn threads_label() -> String {
-    match rayon::current_num_threads() {
-        1 => "1 thread".into(),
-        n => format!("{n} threads"),
-    }
+/// The progress bar's message: the step of the run's `total`, the time
+/// and the stage in progress. With stages the run may end before
+/// `time.end`, so the count (and the bar's ETA) is of the most it can take.
+fn progress_message(sim: &Simulation, total: u64) -> String {
+    let clock = sim.clock();
+    let stage = sim.world().get_resource::<StagePlan>().and_then(|plan| {
+        let spec = plan.scene.stages.get(plan.progress.current)?;
+        Some(format!(", stage '{}'", spec.name))
+    });
+    let of = if stage.is_some() { "at most " } else { "" };
+    format!(
+        "step {}/{of}{total} t = {:.4e} s{}",
+        clock.step,
+        clock.time,
+        stage.unwrap_or_default()
+    )
 }
 
 fn run_bench(points: usize, warmup: u64, steps: u64) -> Result<(), String> {
@@ -454,7 +452,7 @@ fn run_bench(points: usize, warmup: u64, steps: u64) -> Result<(), String> {
             "{label}: {} points, {} steps, {}: {:.3} s, {:.2} M particle-updates/s",
             t.points,
             t.steps,
-            threads_label(),
+            bench::threads_label(),
             t.seconds,
             t.updates_per_second() / 1e6
         );

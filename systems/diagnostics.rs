@@ -103,9 +103,10 @@ type EnergyScratch = (
 
 /// Whether this step is sampled: every `Probes::every` steps, and the
 /// run's last step (its end, or where its last stage ended it), so the
-/// series end with the state the run ends in.
+/// series end with the state the run ends in. Steps taken past the end
+/// (`Simulation::step` does not stop there) keep the interval.
 fn sample_due(clock: &Clock, probes: &Probes) -> bool {
-    clock.step.is_multiple_of(probes.every.max(1)) || clock.finished()
+    clock.step.is_multiple_of(probes.every.max(1)) || clock.step == clock.total_steps()
 }
 
 /// Records probes and energies at the steps [`sample_due`] picks, unless the step

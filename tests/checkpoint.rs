@@ -226,6 +226,32 @@ fn a_run_that_ended_between_samples_resumes_without_its_end_sample() {
     assert_same_run(&mut resumed, &mut straight);
 }
 
+#[test]
+fn a_sample_on_the_first_runs_interval_is_kept_when_the_resumed_interval_differs() {
+    // The first run samples every 10 steps and ends on one, step 2 500;
+    // the resumed scene samples every 15 steps, which would not reach 2 500,
+    // but that sample was the first run's, not an end sample: it stays.
+    let mut short = common::load_scene("rigid_tip.ron");
+    short.time.end = 0.25;
+    short.output.probe_interval = Some(1e-3);
+    let mut long = short.clone();
+    long.time.end = 0.35;
+    long.output.probe_interval = Some(1.5e-3);
+    let file = checkpoint_file("tip-interval");
+    let mut first = build(&short);
+    first.run().expect("run");
+    first.write_checkpoint(&file).expect("checkpoint");
+    let resumed = resume(&long, &file);
+    let times: Vec<Real> = resumed
+        .world()
+        .resource::<EnergyLog>()
+        .samples
+        .iter()
+        .map(|s| s.time)
+        .collect();
+    assert_eq!(times.last(), Some(&0.25), "{:?}", &times[times.len() - 3..]);
+}
+
 /// The pile at the reduced size of tests/pile.rs, driven for 0.1 s, then
 /// a fourth stage that removes the pile.
 fn reduced_pile() -> Scene {

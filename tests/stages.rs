@@ -81,6 +81,28 @@ fn the_step_on_which_the_last_stage_ends_the_run_is_sampled() {
 }
 
 #[test]
+fn steps_past_the_end_keep_the_sampling_interval() {
+    // Sampled every 10 steps and at the end, step 105; `run_until` goes on
+    // to step 150, past the end, where only the interval samples.
+    let mut scene = common::load_scene("wave_1d.ron");
+    scene.time.end = 0.0105;
+    scene.output.probe_interval = Some(1e-3);
+    let mut sim = Simulation::from_scene(&scene).expect("scene");
+    sim.run_until(0.015).expect("run");
+    let energy = &sim
+        .world()
+        .resource::<mpdem::resources::EnergyLog>()
+        .samples;
+    let steps: Vec<u64> = energy
+        .iter()
+        .map(|s| (s.time / 1e-4).round() as u64)
+        .collect();
+    let mut expected: Vec<u64> = (0..=150).step_by(10).collect();
+    expected.insert(11, 105);
+    assert_eq!(steps, expected);
+}
+
+#[test]
 fn a_stress_change_stage_ends_once_the_column_has_settled() {
     // From rest the stresses only begin to change: the first steps change
     // them by less than any useful threshold, so the condition counts only

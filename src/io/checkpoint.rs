@@ -47,8 +47,8 @@ const MAGIC: &[u8; 8] = b"MPDEMCK\0";
 
 /// The layout of the stored state; a checkpoint of another layout is
 /// refused rather than misread. (9: surface tractions no longer held in
-/// the points' external forces.)
-const FORMAT: u32 = 9;
+/// the points' external forces; 10: the sampling interval kept.)
+const FORMAT: u32 = 10;
 
 /// Why a checkpoint could not be written or resumed.
 #[derive(Debug, thiserror::Error)]
@@ -121,6 +121,10 @@ struct RunState {
     body_contacts: [Vec<BodyPairContact>; 2],
     contact_work: ContactWork,
     probe_samples: Vec<ProbeSample>,
+    /// The steps between samples of the run that wrote the checkpoint: a
+    /// sample at its step off that interval was taken because the run
+    /// ended there.
+    probe_every: u64,
     energy: EnergyLog,
     stage_log: StageLog,
     block_log: BlockLog,
@@ -302,6 +306,7 @@ fn capture(world: &mut World, fingerprint: u64, user: Vec<StoredState>) -> RunSt
         ],
         contact_work: *world.resource::<ContactWork>(),
         probe_samples: world.resource::<Probes>().samples.clone(),
+        probe_every: world.resource::<Probes>().every,
         energy: world.resource::<EnergyLog>().clone(),
         stage_log: world.resource::<StageLog>().clone(),
         block_log: world.resource::<BlockLog>().clone(),
@@ -384,17 +389,19 @@ fn apply(
         carry_on_a_stage_cut_short(world, &mut plan.progress);
         world.insert_resource(plan);
     }
-    drop_the_end_sample(world);
+    drop_the_end_sample(world, state.probe_every);
     Ok(())
 }
 
-/// A run samples its last step even off the sampling interval. If the
-/// resumed run goes on past that step, a run that never stopped has no
-/// sample there: it is taken back from every record.
-fn drop_the_end_sample(world: &mut World) {
+/// A run samples its last step even off its sampling interval (`stored`
+/// steps). If the resumed run goes on past that step and its own interval
+/// does not sample it either, a run of the resumed scene that never stopped
+/// has no sample there: it is taken back from every record.
+fn drop_the_end_sample(world: &mut World, stored: u64) {
     let clock = *world.resource::<Clock>();
     let every = world.resource::<Probes>().every.max(1);
-    if clock.finished() || clock.step.is_multiple_of(every) {
+    let sampled_as_the_end = !clock.step.is_multiple_of(stored.max(1));
+    if clock.finished() || !sampled_as_the_end || clock.step.is_multiple_of(every) {
         return;
     }
     let before = clock.time - 0.5 * clock.dt;

@@ -34,7 +34,8 @@ pub struct ProbeSample {
     pub stress: SymTensor,
 }
 
-/// Probes and their samples, recorded every `every` steps and at step 0.
+/// Probes and their samples, recorded every `every` steps, at step 0 and
+/// at the run's last step.
 #[derive(Resource, Clone, Debug, Default, PartialEq)]
 pub struct Probes {
     /// The watched points.
@@ -147,7 +148,7 @@ impl EnergySample {
     }
 }
 
-/// Energy history, recorded with the probes' period.
+/// Energy history, recorded when the probes are.
 #[derive(Resource, Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct EnergyLog {
     /// Samples in time order.
@@ -175,7 +176,7 @@ pub struct BlockSample {
     pub angular: Real,
 }
 
-/// Reactions and motion of every block, recorded with the probes' period.
+/// Reactions and motion of every block, recorded when the probes are.
 #[derive(Resource, Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct BlockLog {
     /// Block names by scene index.
@@ -212,8 +213,8 @@ pub struct BodyPairSample {
     pub summary: PairSummary,
 }
 
-/// Body–body contact history, every pair with a law, recorded with the
-/// probes' period.
+/// Body–body contact history, every pair with a law, recorded when the
+/// probes are.
 #[derive(Resource, Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct BodyPairLog {
     /// Samples in time order, pairs in (a, b) order within a time.

@@ -12,14 +12,15 @@ use crate::resources::BodyPairLaw;
 /// blows up (bodies rebound faster than they met, then a point's volume
 /// inverts). Body contacts measure depth, so k is in N/m per metre.
 /// `bodies` are (name, points) in scene order, `laws` the scene's body
-/// pairs with a law.
+/// pairs with a law. A law between groups of many bodies gives many pairs:
+/// the [`LISTED`] with the smallest limits are named, the rest counted.
 pub fn body_contact_stability_warnings(
     dt: Real,
     bodies: &[(&str, &MaterialPoints)],
     laws: &[BodyPairLaw],
 ) -> Vec<String> {
     let lightest = |p: &MaterialPoints| p.mass.iter().copied().fold(Real::INFINITY, Real::min);
-    let mut warnings = Vec::new();
+    let mut warnings: Vec<(Real, String)> = Vec::new();
     for pair in laws {
         let (a, b) = (&bodies[pair.a as usize], &bodies[pair.b as usize]);
         let (m_a, m_b) = (lightest(a.1), lightest(b.1));
@@ -30,14 +31,26 @@ pub fn body_contact_stability_warnings(
         let stiffness = pair.law.normal_stiffness.max(pair.law.tangential_stiffness);
         let limit = 2.0 * (reduced / stiffness).sqrt();
         if dt > limit {
-            warnings.push(format!(
+            warnings.push((limit, format!(
                 "time.dt = {dt:e} s exceeds the contact stability limit 2 sqrt(m / max(k_n, k_t)) = {limit:.3e} s of bodies '{}' and '{}' (m = {reduced:.3e} kg/m, the reduced mass of their lightest points): the contact will gain energy and the run will likely blow up",
                 a.0, b.0
-            ));
+            )));
         }
     }
-    warnings
+    // A stable sort: equal limits keep the scene's pair order.
+    warnings.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let more = warnings.len().saturating_sub(LISTED);
+    let mut listed: Vec<String> = warnings.into_iter().take(LISTED).map(|(_, w)| w).collect();
+    if more > 0 {
+        listed.push(format!(
+            "{more} more pairs of bodies under contact laws exceed their contact stability limits at time.dt = {dt:e} s"
+        ));
+    }
+    listed
 }
+
+/// How many pairs of bodies the stability warning names.
+const LISTED: usize = 3;
 
 #[cfg(test)]
 mod tests {
@@ -84,6 +97,32 @@ mod tests {
             warned[0].contains("= 2.000e-2 s of bodies 'a' and 'b'"),
             "{}",
             warned[0]
+        );
+    }
+
+    #[test]
+    fn many_pairs_are_named_up_to_the_listed_number_with_the_smallest_limits_first() {
+        // Five bodies, lighter down the list, all under one law: ten pairs.
+        let bodies: Vec<MaterialPoints> = (0..5).map(|k| points(10.0 - k as Real)).collect();
+        let names = ["a", "b", "c", "d", "e"];
+        let placed: Vec<(&str, &MaterialPoints)> = names.iter().copied().zip(&bodies).collect();
+        let law = ContactLaw {
+            normal_stiffness: 1e6,
+            tangential_stiffness: 1e6,
+            friction: 0.0,
+            normal_damping: 0.0,
+        };
+        let laws: Vec<BodyPairLaw> = (0..5u32)
+            .flat_map(|a| (a + 1..5).map(move |b| BodyPairLaw { a, b, law }))
+            .collect();
+        let warned = body_contact_stability_warnings(1.0, &placed, &laws);
+        assert_eq!(warned.len(), LISTED + 1, "{warned:?}");
+        // The two lightest bodies, d and e, make the smallest limit.
+        assert!(warned[0].contains("bodies 'd' and 'e'"), "{}", warned[0]);
+        assert!(
+            warned[LISTED].starts_with("7 more pairs"),
+            "{}",
+            warned[LISTED]
         );
     }
 }

@@ -19,9 +19,9 @@ fn steps_time(steps: u64, dt: Real) -> Real {
     format!("{time:.11e}").parse().unwrap_or(time)
 }
 
-/// A warning for a `time.end`, and for each stage `Duration`, more than
-/// [`OFF_STEP_WARNING`] of itself away from the steps the run takes for it,
-/// with those steps.
+/// A warning for a `time.end`, for each stage `Duration` and for each
+/// output interval the scene gives, more than [`OFF_STEP_WARNING`] of
+/// itself away from the steps the run takes for it, with those steps.
 pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<String> {
     let mut warnings = Vec::new();
     let steps = clock.total_steps();
