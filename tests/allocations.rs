@@ -107,14 +107,7 @@ fn every_scene_steps_without_allocating() {
     }
     // A dynamic block falling in a stage that ends when the kinetic energy
     // (of bodies and dynamic blocks) has settled.
-    let mut drop = common::load_scene("rigid_drop.ron");
-    drop.stages = vec![mpdem::scene::StageSpec::new(
-        "drop",
-        mpdem::scene::StageEnd::KineticEnergyRatio {
-            ratio: 1e-3,
-            max_time: 1.4,
-        },
-    )];
+    let drop = common::settling_drop();
     let mut report = Vec::new();
     let mut measure = |name: &str, sim: &mut Simulation, steps: usize| {
         let n = allocations_in_steps(sim, steps);

@@ -141,21 +141,32 @@ fn body_contacts_resume_with_their_tangential_springs() {
     resumes_bit_identically("rings", &rings, 705, 1000);
 }
 
+/// The box tipping over the table's edge (block–block springs), ending at
+/// `first_end` and, resumed, at `later_end`, sampled every 10 steps (the
+/// default interval follows the end time).
+fn tip_scenes(first_end: Real, later_end: Real) -> (Scene, Scene) {
+    let mut first = common::load_scene("rigid_tip.ron");
+    first.time.end = first_end;
+    first.output.probe_interval = Some(1e-3);
+    let mut later = first.clone();
+    later.time.end = later_end;
+    (first, later)
+}
+
+/// `first` run to its end and checkpointed (as `tag`), then resumed as
+/// `later`, not yet stepped; and the first run.
+fn run_and_resume(tag: &str, first: &Scene, later: &Scene) -> (Simulation, Simulation) {
+    let file = checkpoint_file(tag);
+    let mut run = build(first);
+    run.run().expect("run");
+    run.write_checkpoint(&file).expect("checkpoint");
+    (resume(later, &file), run)
+}
+
 #[test]
 fn a_dynamic_block_resumes_and_runs_on_to_a_later_end() {
-    // The box tips over the table's edge (block–block springs); the first
-    // run ends at 0.25 s, the resumed one is given 0.35 s. The sampling
-    // interval is set: its default follows the end time.
-    let mut short = common::load_scene("rigid_tip.ron");
-    short.time.end = 0.25;
-    short.output.probe_interval = Some(1e-3);
-    let mut long = short.clone();
-    long.time.end = 0.35;
-    let file = checkpoint_file("tip");
-    let mut first = build(&short);
-    first.run().expect("run");
-    first.write_checkpoint(&file).expect("checkpoint");
-    let mut resumed = resume(&long, &file);
+    let (short, long) = tip_scenes(0.25, 0.35);
+    let (mut resumed, _) = run_and_resume("tip", &short, &long);
     resumed.run().expect("run");
     let mut straight = build(&long);
     straight.run().expect("run");
@@ -202,24 +213,9 @@ fn a_run_that_ended_between_samples_resumes_without_its_end_sample() {
     // The first run ends at step 2 505, between two samples (every 10
     // steps), and samples its end; resumed with a later end, that sample
     // goes, as a run that never stopped has none there.
-    let mut short = common::load_scene("rigid_tip.ron");
-    short.time.end = 0.2505;
-    short.output.probe_interval = Some(1e-3);
-    let mut long = short.clone();
-    long.time.end = 0.35;
-    let file = checkpoint_file("tip-between");
-    let mut first = build(&short);
-    first.run().expect("run");
-    let last = |sim: &Simulation| {
-        sim.world()
-            .resource::<EnergyLog>()
-            .samples
-            .last()
-            .map(|s| s.time)
-    };
-    assert_eq!(last(&first), Some(first.clock().time));
-    first.write_checkpoint(&file).expect("checkpoint");
-    let mut resumed = resume(&long, &file);
+    let (short, long) = tip_scenes(0.2505, 0.35);
+    let (mut resumed, first) = run_and_resume("tip-between", &short, &long);
+    assert_eq!(last_energy_sample(&first), Some(first.clock().time));
     resumed.run().expect("run");
     let mut straight = build(&long);
     straight.run().expect("run");
@@ -231,25 +227,15 @@ fn a_sample_on_the_first_runs_interval_is_kept_when_the_resumed_interval_differs
     // The first run samples every 10 steps and ends on one, step 2 500;
     // the resumed scene samples every 15 steps, which would not reach 2 500,
     // but that sample was the first run's, not an end sample: it stays.
-    let mut short = common::load_scene("rigid_tip.ron");
-    short.time.end = 0.25;
-    short.output.probe_interval = Some(1e-3);
-    let mut long = short.clone();
-    long.time.end = 0.35;
+    let (short, mut long) = tip_scenes(0.25, 0.35);
     long.output.probe_interval = Some(1.5e-3);
-    let file = checkpoint_file("tip-interval");
-    let mut first = build(&short);
-    first.run().expect("run");
-    first.write_checkpoint(&file).expect("checkpoint");
-    let resumed = resume(&long, &file);
-    let times: Vec<Real> = resumed
-        .world()
-        .resource::<EnergyLog>()
-        .samples
-        .iter()
-        .map(|s| s.time)
-        .collect();
-    assert_eq!(times.last(), Some(&0.25), "{:?}", &times[times.len() - 3..]);
+    let (resumed, _) = run_and_resume("tip-interval", &short, &long);
+    assert_eq!(last_energy_sample(&resumed), Some(0.25));
+}
+
+fn last_energy_sample(sim: &Simulation) -> Option<Real> {
+    let samples = &sim.world().resource::<EnergyLog>().samples;
+    samples.last().map(|s| s.time)
 }
 
 /// The pile at the reduced size of tests/pile.rs, driven for 0.1 s, then

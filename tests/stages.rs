@@ -284,14 +284,7 @@ fn a_kinetic_energy_stage_counts_the_dynamic_blocks() {
     // The box dropped 0.1 m onto the ground (no bodies at all): the stage
     // ends on its condition once the box has landed and settled, after the
     // 0.14 s fall, not on its first step and not at max_time.
-    let mut scene = common::load_scene("rigid_drop.ron");
-    scene.stages = vec![mpdem::scene::StageSpec::new(
-        "drop",
-        mpdem::scene::StageEnd::KineticEnergyRatio {
-            ratio: 1e-3,
-            max_time: 1.4,
-        },
-    )];
+    let scene = common::settling_drop();
     let mut sim = Simulation::from_scene(&scene).expect("scene");
     sim.run().expect("run");
     let record = &sim.world().resource::<StageLog>().records[0];

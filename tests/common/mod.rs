@@ -16,6 +16,21 @@ pub fn load_scene(file: &str) -> Scene {
     Scene::load(&scene_path(file)).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// `rigid_drop`'s box falling 0.1 m onto the ground in one stage, named
+/// "drop", that ends once the kinetic energy has fallen to 1e-3 of its peak
+/// (at most 1.4 s).
+pub fn settling_drop() -> Scene {
+    let mut scene = load_scene("rigid_drop.ron");
+    scene.stages = vec![mpdem::scene::StageSpec::new(
+        "drop",
+        mpdem::scene::StageEnd::KineticEnergyRatio {
+            ratio: 1e-3,
+            max_time: 1.4,
+        },
+    )];
+    scene
+}
+
 /// Builds and runs a scene to its end.
 pub fn run_scene(scene: &Scene) -> Simulation {
     let mut sim = Simulation::from_scene(scene).unwrap_or_else(|e| panic!("{e}"));
