@@ -282,7 +282,9 @@ fn run(
     let total = clock.total_steps();
     let progress = progress_bar(total, quiet, "{bar:40} {msg} elapsed {elapsed} ETA {eta}");
     progress.set_position(clock.step);
-    progress.set_message(progress_message(&sim, total));
+    let (message, length) = progress_message(&sim, total);
+    progress.set_length(length);
+    progress.set_message(message);
     progress.reset_eta();
     let started = std::time::Instant::now();
     let interrupted = stop_on_ctrl_c();
@@ -312,7 +314,9 @@ fn run(
             // The message carries the step with its time (the bar's own
             // position may be drawn a refresh apart from the message).
             progress.set_position(now.step);
-            progress.set_message(progress_message(&sim, total));
+            let (message, length) = progress_message(&sim, total);
+            progress.set_length(length);
+            progress.set_message(message);
         }
     }
     progress.finish_and_clear();
@@ -415,22 +419,33 @@ fn bench_scene(path: &Path, warmup: u64, steps: u64) -> Result<(), String> {
     Ok(())
 }
 
-/// The progress bar's message: the step of the run's `total`, the time
-/// and the stage in progress. With stages the run may end before
-/// `time.end`, so the count (and the bar's ETA) is of the most it can take.
-fn progress_message(sim: &Simulation, total: u64) -> String {
+/// The progress bar's message and length: the step of the run's `total`
+/// steps, the time and the stage in progress. With stages the run may end
+/// before `time.end`: the length is then the most steps the stages can
+/// take (each at its `Duration` or `max_time`), within `total`.
+fn progress_message(sim: &Simulation, total: u64) -> (String, u64) {
     let clock = sim.clock();
-    let stage = sim.world().get_resource::<StagePlan>().and_then(|plan| {
-        let spec = plan.scene.stages.get(plan.progress.current)?;
-        Some(format!(", stage '{}'", spec.name))
-    });
-    let of = if stage.is_some() { "at most " } else { "" };
-    format!(
-        "step {}/{of}{total} t = {:.4e} s{}",
-        clock.step,
-        clock.time,
-        stage.unwrap_or_default()
-    )
+    let Some((name, cap)) = sim.world().get_resource::<StagePlan>().and_then(|plan| {
+        let stages = &plan.scene.stages;
+        let current = stages.get(plan.progress.current)?;
+        // The latest the stages can end: the current one's start and every
+        // stage from it at its longest.
+        let latest = plan.progress.started
+            + stages[plan.progress.current..]
+                .iter()
+                .map(|s| s.end.max_time())
+                .sum::<mpdem::math::Real>();
+        let cap = ((latest / clock.dt).round() as u64).clamp(clock.step, total);
+        Some((current.name.clone(), cap))
+    }) else {
+        let message = format!("step {}/{total} t = {:.4e} s", clock.step, clock.time);
+        return (message, total);
+    };
+    let message = format!(
+        "step {}/at most {cap} t = {:.4e} s, stage '{name}'",
+        clock.step, clock.time
+    );
+    (message, cap)
 }
 
 fn run_bench(points: usize, warmup: u64, steps: u64) -> Result<(), String> {

@@ -157,10 +157,16 @@ fn finish_stage(world: &mut World, plan: &mut StagePlan, reason: StageEndReason)
                 1 => "; the stage after it was not run".into(),
                 n => format!("; the {n} stages after it were not run"),
             };
-            log.warnings.push(format!(
-                "time.end = {} s came during stage '{}' before it ended: the stage was cut short{rest}",
-                clock.end, stage.name
-            ));
+            let cut = if clock.time > plan.progress.started {
+                format!("during stage '{}': the stage was cut short", stage.name)
+            } else {
+                format!(
+                    "as stage '{}' began: its changes were made, none of its steps run",
+                    stage.name
+                )
+            };
+            log.warnings
+                .push(format!("time.end = {} s came {cut}{rest}", clock.end));
         }
         StageEndReason::Duration | StageEndReason::Condition => {}
     }
@@ -168,6 +174,11 @@ fn finish_stage(world: &mut World, plan: &mut StagePlan, reason: StageEndReason)
     if reason != StageEndReason::SceneEnd && next < plan.scene.stages.len() {
         let warnings = enter_stage(world, plan, next);
         world.resource_mut::<StageLog>().warnings.extend(warnings);
+        // time.end on the boundary: the next stage has begun (as in a run
+        // with a later end, which a resumed run then is) and is cut short.
+        if clock.finished() {
+            finish_stage(world, plan, StageEndReason::SceneEnd);
+        }
     } else {
         plan.progress.finished = true;
         world.resource_mut::<Clock>().end = clock.time;

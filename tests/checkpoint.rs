@@ -336,6 +336,29 @@ fn a_stage_cut_short_by_the_end_time_goes_on_when_the_end_grows() {
 }
 
 #[test]
+fn a_stage_begun_at_the_end_time_goes_on_when_the_end_grows() {
+    // time.end on the boundary of two stages: the second has begun (its
+    // surcharge is on) and is cut short at once; resumed with a later end,
+    // it runs on as in a run given the later end from the start.
+    let mut short = common::load_scene("geostatic_column.ron");
+    short.stages[0].end = StageEnd::Duration(0.02);
+    short.stages[1].end = StageEnd::Duration(0.02);
+    short.time.end = 0.02;
+    short.output.probe_interval = Some(0.01);
+    let mut long = short.clone();
+    long.time.end = 0.04;
+    let (mut resumed, first) = run_and_resume("column-boundary", &short, &long);
+    let records = &first.world().resource::<StageLog>().records;
+    assert_eq!(records.len(), 2, "{records:?}");
+    assert_eq!(records[1].reason, StageEndReason::SceneEnd);
+    assert_eq!(records[1].steps, 0);
+    resumed.run().expect("run");
+    let mut straight = build(&long);
+    straight.run().expect("run");
+    assert_same_run(&mut resumed, &mut straight);
+}
+
+#[test]
 fn a_block_a_stage_added_is_spawned_again_on_resuming() {
     let mut scene = reduced_pile();
     scene.stages.pop();

@@ -15,7 +15,7 @@ fn reduced_scenes_folder() -> std::path::PathBuf {
             ("cell_size: 0.002,", "cell_size: 0.004,"),
             ("cells: (400, 500),", "cells: (200, 250),"),
             ("dt: 1.5e-5,", "dt: 3e-5,"),
-            ("end: Duration(1.0),", "end: Duration(0.4),"),
+            ("end: Duration(1.000005),", "end: Duration(0.39999),"),
             (
                 "min: (0.597, -0.001), max: (0.607, 0.001)",
                 "min: (0.595, -0.001), max: (0.609, 0.001)",

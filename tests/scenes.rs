@@ -254,7 +254,7 @@ fn a_time_step_above_the_cfl_limit_warns_with_the_limit() {
     let sim = Simulation::from_scene(&scene).unwrap();
     assert_eq!(sim.warnings().len(), 1, "{:?}", sim.warnings());
     assert!(
-        sim.warnings()[0].contains("CFL limit h / c = 5e-4 s"),
+        sim.warnings()[0].contains("CFL limit h / c = 5.0000e-4 s"),
         "{}",
         sim.warnings()[0]
     );
@@ -436,6 +436,14 @@ fn an_end_off_the_time_step_warns_with_the_steps_taken() {
         "{}",
         sim.warnings()[0]
     );
+    // Half a step off a long run is as far from the asked end.
+    scene.time.end = 0.20005;
+    let sim = Simulation::from_scene(&scene).unwrap();
+    assert_eq!(sim.warnings().len(), 1, "{:?}", sim.warnings());
+    // A multiple of the step, however long, says nothing.
+    scene.time.end = 0.2;
+    let sim = Simulation::from_scene(&scene).unwrap();
+    assert!(sim.warnings().is_empty(), "{:?}", sim.warnings());
 }
 
 #[test]

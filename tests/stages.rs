@@ -42,16 +42,28 @@ fn a_stage_the_end_time_cuts_short_is_named_with_the_stages_not_run() {
         (
             0.01,
             0,
-            "stage 'geostatic' before it ended: the stage was cut short; the stage after it was not run",
+            "during stage 'geostatic': the stage was cut short; the stage after it was not run",
         ),
+        (0.03, 1, "during stage 'surcharge': the stage was cut short"),
+        // The end on the boundary: the second stage has begun (its
+        // surcharge is on) and is cut short at once.
         (
-            0.03,
+            0.02,
             1,
-            "stage 'surcharge' before it ended: the stage was cut short",
+            "as stage 'surcharge' began: its changes were made, none of its steps run",
         ),
     ] {
         scene.time.end = end;
         let mut sim = Simulation::from_scene(&scene).expect("scene");
+        // Stages of fixed durations: `check` can tell the cut beforehand.
+        let name = &scene.stages[cut].name;
+        assert!(
+            sim.warnings()
+                .iter()
+                .any(|w| w.contains(&format!("cuts stage '{name}'"))),
+            "{:?}",
+            sim.warnings()
+        );
         sim.run().expect("run");
         let log = sim.world().resource::<StageLog>();
         assert_eq!(log.records.len(), cut + 1);

@@ -32,7 +32,7 @@ pub fn body_contact_stability_warnings(
         let limit = 2.0 * (reduced / stiffness).sqrt();
         if dt > limit {
             warnings.push((limit, format!(
-                "time.dt = {dt:e} s exceeds the contact stability limit 2 sqrt(m / max(k_n, k_t)) = {limit:.3e} s of bodies '{}' and '{}' (m = {reduced:.3e} kg/m, the reduced mass of their lightest points): the contact will gain energy and the run will likely blow up",
+                "time.dt = {dt:e} s exceeds the contact stability limit 2 sqrt(m / max(k_n, k_t)) = {limit:.4e} s of bodies '{}' and '{}' (m = {reduced:.4e} kg/m, the reduced mass of their lightest points): the contact will gain energy and the run will likely blow up",
                 a.0, b.0
             )));
         }
@@ -94,7 +94,7 @@ mod tests {
         let warned = body_contact_stability_warnings(0.0201, &bodies, &laws);
         assert_eq!(warned.len(), 1);
         assert!(
-            warned[0].contains("= 2.000e-2 s of bodies 'a' and 'b'"),
+            warned[0].contains("= 2.0000e-2 s of bodies 'a' and 'b'"),
             "{}",
             warned[0]
         );

@@ -81,7 +81,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         let limit = grid.cell_size / wave_speed;
         if clock.dt > limit {
             warnings.push(format!(
-                "time.dt = {:e} s exceeds the CFL limit h / c = {limit:e} s of material '{}' (c = {wave_speed:.4e} m/s): the run will likely blow up",
+                "time.dt = {:e} s exceeds the CFL limit h / c = {limit:.4e} s of material '{}' (c = {wave_speed:.4e} m/s): the run will likely blow up",
                 clock.dt, material.name
             ));
         }

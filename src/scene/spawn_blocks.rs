@@ -88,7 +88,7 @@ pub fn spawn_block(
         let limit = 2.0 * (lightest / stiffness).sqrt();
         if scene.time.dt > limit {
             warnings.push(format!(
-                "time.dt = {:e} s exceeds the contact stability limit 2 sqrt(m_p / max(k_n, k_t)) = {limit:e} s of block '{}' (lightest point {lightest:e} kg/m)",
+                "time.dt = {:e} s exceeds the contact stability limit 2 sqrt(m_p / max(k_n, k_t)) = {limit:.4e} s of block '{}' (lightest point {lightest:.4e} kg/m)",
                 scene.time.dt, spec.name
             ));
         }

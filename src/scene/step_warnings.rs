@@ -6,11 +6,17 @@ use super::{Scene, StageEnd};
 use crate::math::Real;
 use crate::resources::Clock;
 
-/// How far, as a fraction of itself, a duration (`time.end`, a stage's)
-/// may be from the whole number of steps the run gives it before a warning
-/// says so: a thousandth, far above the round-off of a duration meant as a
-/// multiple of Δt, far below one step of a duration a few steps long.
-const OFF_STEP_WARNING: Real = 1e-3;
+/// How far, in steps, a duration (`time.end`, a stage's, an output
+/// interval) may be from the whole number of steps the run gives it before
+/// a warning says so: a millionth of a step, far above the round-off of a
+/// duration meant as a multiple of Δt (about 1e-16 of the step count), far
+/// below the half step of a tie, whatever the duration's length.
+const OFF_STEP_TOLERANCE: Real = 1e-6;
+
+/// Whether `duration` is off the whole number `steps` of steps of `dt`.
+fn off_step(duration: Real, dt: Real, steps: u64) -> bool {
+    (duration / dt - steps as Real).abs() > OFF_STEP_TOLERANCE
+}
 
 /// `steps` × Δt rounded to 12 significant digits, so that a message says
 /// 3e-4 s and not 3.0000000000000003e-4 s.
@@ -20,12 +26,13 @@ fn steps_time(steps: u64, dt: Real) -> Real {
 }
 
 /// A warning for a `time.end`, for each stage `Duration` and for each
-/// output interval the scene gives, more than [`OFF_STEP_WARNING`] of
-/// itself away from the steps the run takes for it, with those steps.
+/// output interval the scene gives (shorter than the run), more than
+/// [`OFF_STEP_TOLERANCE`] of a step away from the steps the run takes for
+/// it, with those steps.
 pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<String> {
     let mut warnings = Vec::new();
     let steps = clock.total_steps();
-    if (steps as Real * clock.dt - clock.end).abs() > OFF_STEP_WARNING * clock.end {
+    if off_step(clock.end, clock.dt, steps) {
         warnings.push(format!(
             "time.end = {:e} s is not a multiple of time.dt = {:e} s: the run takes the nearest whole number of steps, {steps}, to t = {:e} s",
             clock.end,
@@ -38,7 +45,7 @@ pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<String> {
             // The stage ends on the first step with elapsed ≥ d − Δt/2.
             let ratio = d / clock.dt;
             let stage_steps = (ratio - 0.5 - 1e-9).ceil().max(1.0) as u64;
-            if (stage_steps as Real * clock.dt - d).abs() > OFF_STEP_WARNING * d {
+            if off_step(d, clock.dt, stage_steps) {
                 // At a half-step tie the elapsed time's round-off decides.
                 let tie = ratio > 0.5 && (ratio.fract() - 0.5).abs() < 1e-6;
                 let takes = if tie {
@@ -59,6 +66,31 @@ pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<String> {
             }
         }
     }
+    // Stages that all run a fixed time: time.end cutting them is certain.
+    let fixed: Option<Vec<Real>> = scene
+        .stages
+        .iter()
+        .map(|s| match s.end {
+            StageEnd::Duration(d) => Some(d),
+            _ => None,
+        })
+        .collect();
+    if let Some(durations) = fixed {
+        let mut start = 0.0;
+        for (stage, d) in scene.stages.iter().zip(durations) {
+            if start + d > clock.end + 0.5 * clock.dt {
+                warnings.push(format!(
+                    "time.end = {:e} s cuts stage '{}' ({start:e} s to {:e} s) short; the stages take {:e} s in all",
+                    clock.end,
+                    stage.name,
+                    start + d,
+                    scene.stages.iter().map(|s| s.end.max_time()).sum::<Real>()
+                ));
+                break;
+            }
+            start += d;
+        }
+    }
     // Intervals the scene gives; the defaults (a fraction of the end) are
     // rounded as documented.
     let intervals = [
@@ -74,11 +106,13 @@ pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<String> {
         ),
     ];
     for (field, interval, what) in intervals {
-        let Some(interval) = interval else {
+        // An interval as long as the run never comes: the first and last
+        // states are written all the same.
+        let Some(interval) = interval.filter(|i| *i < clock.end) else {
             continue;
         };
         let every = super::whole_steps(interval, clock.dt);
-        if (every as Real * clock.dt - interval).abs() > OFF_STEP_WARNING * interval {
+        if off_step(interval, clock.dt, every) {
             warnings.push(format!(
                 "output.{field} = {interval:e} s is not a multiple of time.dt = {:e} s: {what} every {every} step(s), {:e} s",
                 clock.dt,
