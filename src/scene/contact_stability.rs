@@ -32,7 +32,7 @@ pub fn body_contact_stability_warnings(
         let limit = 2.0 * (reduced / stiffness).sqrt();
         if dt > limit {
             warnings.push((limit, format!(
-                "time.dt = {dt:e} s exceeds the contact stability limit 2 sqrt(m / max(k_n, k_t)) = {limit:.4e} s of bodies '{}' and '{}' (m = {reduced:.4e} kg/m, the reduced mass of their lightest points): the contact will gain energy and the run will likely blow up",
+                "time.dt = {dt:e} s exceeds the contact stability limit 2 sqrt(m / max(k_n, k_t)) = {limit:.4e} s of bodies '{}' and '{}' (m = {reduced:.4e} kg/m, the reduced mass of their lightest points): the contact will gain energy and the run will likely blow up (under the default `position_update: Midpoint`, undamped contacts gain energy below it too: see the README)",
                 a.0, b.0
             )));
         }
