@@ -430,12 +430,13 @@ fn progress_message(sim: &Simulation, total: u64) -> (String, u64) {
         let current = stages.get(plan.progress.current)?;
         // The latest the stages can end: the current one's start and every
         // stage from it at its longest.
-        let latest = plan.progress.started
-            + stages[plan.progress.current..]
-                .iter()
-                .map(|s| s.end.max_time())
-                .sum::<mpdem::math::Real>();
-        let cap = ((latest / clock.dt).round() as u64).clamp(clock.step, total);
+        let started = (plan.progress.started / clock.dt).round() as u64;
+        let latest = stages[plan.progress.current..]
+            .iter()
+            .fold(started, |steps, s| {
+                steps.saturating_add(s.end.most_steps(clock.dt))
+            });
+        let cap = latest.clamp(clock.step, total);
         Some((current.name.clone(), cap))
     }) else {
         let message = format!("step {}/{total} t = {:.4e} s", clock.step, clock.time);

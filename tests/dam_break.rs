@@ -6,7 +6,8 @@ mod common;
 
 /// `scenes/dam_break.ron` with cells twice as large (5 000 water points,
 /// 100 beam points), the step doubled (within both limits at this cell)
-/// and 0.4 s after the gate opens (the first impact), in a fresh folder.
+/// with the output intervals in its whole steps, and 0.4 s after the gate
+/// opens (the first impact), in a fresh folder.
 fn reduced_scenes_folder() -> std::path::PathBuf {
     common::edited_scenes_folder(
         "dam_break.ron",
@@ -16,6 +17,15 @@ fn reduced_scenes_folder() -> std::path::PathBuf {
             ("cells: (400, 500),", "cells: (200, 250),"),
             ("dt: 1.5e-5,", "dt: 3e-5,"),
             ("end: Duration(1.000005),", "end: Duration(0.39999),"),
+            // Whole steps of the doubled step: 333 and 33.
+            (
+                "frame_interval: Some(1.0005e-2)",
+                "frame_interval: Some(9.99e-3)",
+            ),
+            (
+                "probe_interval: Some(1.005e-3)",
+                "probe_interval: Some(9.9e-4)",
+            ),
             (
                 "min: (0.597, -0.001), max: (0.607, 0.001)",
                 "min: (0.595, -0.001), max: (0.609, 0.001)",

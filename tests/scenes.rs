@@ -469,6 +469,28 @@ fn output_intervals_off_the_time_step_warn_with_the_steps_taken() {
 }
 
 #[test]
+fn stages_of_fixed_durations_that_time_end_cuts_are_warned_by_their_steps() {
+    // dt = 1e-4 s. Each stage ends on the first step whose elapsed time
+    // reaches its duration less half a step: 0.50004 s and 0.49996 s both
+    // take 5 000 steps, so two of either take 10 000.
+    let mut scene = common::load_scene("wave_1d.ron");
+    let cuts = |scene: &Scene| {
+        let sim = Simulation::from_scene(scene).unwrap();
+        sim.warnings()
+            .iter()
+            .any(|w| w.contains("cuts stage 'second'"))
+    };
+    for (duration, end, cut) in [(0.50004, 1.0, false), (0.49996, 0.9999, true)] {
+        scene.stages = vec![
+            mpdem::scene::StageSpec::new("first", mpdem::scene::StageEnd::Duration(duration)),
+            mpdem::scene::StageSpec::new("second", mpdem::scene::StageEnd::Duration(duration)),
+        ];
+        scene.time.end = end;
+        assert_eq!(cuts(&scene), cut, "{duration} s twice, end {end} s");
+    }
+}
+
+#[test]
 fn a_probe_far_from_its_body_warns() {
     let mut scene = common::load_scene("wave_1d.ron");
     scene.probes[0].at = DVec2::new(0.5, 0.5);

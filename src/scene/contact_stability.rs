@@ -42,8 +42,9 @@ pub fn body_contact_stability_warnings(
     let more = warnings.len().saturating_sub(LISTED);
     let mut listed: Vec<String> = warnings.into_iter().take(LISTED).map(|(_, w)| w).collect();
     if more > 0 {
+        let pairs = if more == 1 { "pair" } else { "pairs" };
         listed.push(format!(
-            "{more} more pairs of bodies under contact laws exceed their contact stability limits at time.dt = {dt:e} s"
+            "{more} more {pairs} of bodies under contact laws exceed their contact stability limits at time.dt = {dt:e} s"
         ));
     }
     listed

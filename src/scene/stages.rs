@@ -157,6 +157,13 @@ impl StageEnd {
         }
     }
 
+    /// The most steps of `dt` the stage can take: it ends on the first step
+    /// whose elapsed time reaches its `Duration` or `max_time` less half a
+    /// step (systems/stages.rs), and takes at least one.
+    pub fn most_steps(&self, dt: Real) -> u64 {
+        (self.max_time() / dt - 0.5 - 1e-9).ceil().max(1.0) as u64
+    }
+
     /// The longest the stage can last (s).
     pub fn max_time(&self) -> Real {
         match *self {

@@ -42,9 +42,8 @@ pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<String> {
     }
     for stage in &scene.stages {
         if let StageEnd::Duration(d) = stage.end {
-            // The stage ends on the first step with elapsed ≥ d − Δt/2.
             let ratio = d / clock.dt;
-            let stage_steps = (ratio - 0.5 - 1e-9).ceil().max(1.0) as u64;
+            let stage_steps = stage.end.most_steps(clock.dt);
             if off_step(d, clock.dt, stage_steps) {
                 // At a half-step tie the elapsed time's round-off decides.
                 let tie = ratio > 0.5 && (ratio.fract() - 0.5).abs() < 1e-6;
@@ -66,29 +65,32 @@ pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<String> {
             }
         }
     }
-    // Stages that all run a fixed time: time.end cutting them is certain.
-    let fixed: Option<Vec<Real>> = scene
+    // Stages that all run a fixed number of steps: time.end cutting them
+    // is certain.
+    if scene
         .stages
         .iter()
-        .map(|s| match s.end {
-            StageEnd::Duration(d) => Some(d),
-            _ => None,
-        })
-        .collect();
-    if let Some(durations) = fixed {
-        let mut start = 0.0;
-        for (stage, d) in scene.stages.iter().zip(durations) {
-            if start + d > clock.end + 0.5 * clock.dt {
+        .all(|s| matches!(s.end, StageEnd::Duration(_)))
+    {
+        let all = scene
+            .stages
+            .iter()
+            .fold(0, |n: u64, s| n.saturating_add(s.end.most_steps(clock.dt)));
+        let mut start: u64 = 0;
+        for stage in &scene.stages {
+            let end = start.saturating_add(stage.end.most_steps(clock.dt));
+            if end > steps {
                 warnings.push(format!(
-                    "time.end = {:e} s cuts stage '{}' ({start:e} s to {:e} s) short; the stages take {:e} s in all",
+                    "time.end = {:e} s cuts stage '{}' ({:e} s to {:e} s) short; the stages take {:e} s in all",
                     clock.end,
                     stage.name,
-                    start + d,
-                    scene.stages.iter().map(|s| s.end.max_time()).sum::<Real>()
+                    steps_time(start, clock.dt),
+                    steps_time(end, clock.dt),
+                    steps_time(all, clock.dt)
                 ));
                 break;
             }
-            start += d;
+            start = end;
         }
     }
     // Intervals the scene gives; the defaults (a fraction of the end) are
