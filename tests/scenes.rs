@@ -491,6 +491,35 @@ fn stages_of_fixed_durations_that_time_end_cuts_are_warned_by_their_steps() {
 }
 
 #[test]
+fn an_initial_stress_the_material_would_replace_is_refused() {
+    // Neo-Hookean stress follows F, which starts at I: the geostatic stress
+    // would be gone after the first step.
+    let mut scene = common::load_scene("column_collapse.ron");
+    assert!(scene.bodies[0].initial_stress.is_some());
+    scene.materials[0].model =
+        mpdem::materials::MaterialModel::NeoHookean(mpdem::materials::NeoHookean {
+            youngs_modulus: 2e7,
+            poisson_ratio: 0.2,
+        });
+    let refusal = scene.validate().expect_err("accepted").to_string();
+    assert!(
+        refusal.contains("computes its stress from the deformation"),
+        "{refusal}"
+    );
+}
+
+#[test]
+fn the_affine_transfer_with_the_linear_kernel_is_refused() {
+    let mut scene = common::load_scene("wave_1d.ron");
+    scene.settings.affine_transfer = true;
+    scene.settings.shape_function = mpdem::shape_functions::ShapeFunction::Linear;
+    let refusal = scene.validate().expect_err("accepted").to_string();
+    assert!(refusal.contains("with the Linear kernel"), "{refusal}");
+    scene.settings.shape_function = mpdem::shape_functions::ShapeFunction::UGimp;
+    assert!(scene.validate().is_ok());
+}
+
+#[test]
 fn a_probe_far_from_its_body_warns() {
     let mut scene = common::load_scene("wave_1d.ron");
     scene.probes[0].at = DVec2::new(0.5, 0.5);

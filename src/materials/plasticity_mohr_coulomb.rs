@@ -168,6 +168,14 @@ impl MohrCoulomb {
             ));
         }
         non_negative(self.cohesion).map_err(|e| format!("cohesion: {e}"))?;
+        if self.friction_angle == 0.0 && self.cohesion == 0.0 {
+            // The pyramid shrinks to the hydrostatic axis, which the return
+            // mapping does not handle: it sent every stress to zero and the
+            // body collapsed to a line, silently.
+            return Err(
+                "friction_angle 0 with cohesion 0 leaves the material no shear strength, which this model cannot return to; give either a value, or use DruckerPrager (a frictionless, cohesionless solid) or NewtonianFluid".into(),
+            );
+        }
         non_negative(self.tension_cutoff).map_err(|e| format!("tension_cutoff: {e}"))?;
         non_negative(self.meridional_eccentricity)
             .map_err(|e| format!("meridional_eccentricity: {e}"))?;
@@ -602,6 +610,35 @@ mod tests {
             .wrapping_mul(6364136223846793005)
             .wrapping_add(1442695040888963407);
         ((*state >> 11) as Real / (1u64 << 53) as Real) * 2.0 - 1.0
+    }
+
+    #[test]
+    fn a_material_without_friction_and_cohesion_is_refused() {
+        let strengthless = MohrCoulomb {
+            friction_angle: 0.0,
+            dilation_angle: 0.0,
+            cohesion: 0.0,
+            ..SAND
+        };
+        let refusal = strengthless.check().expect_err("accepted");
+        assert!(refusal.contains("no shear strength"), "{refusal}");
+        // Either alone is a model it returns to (Tresca; cohesionless sand).
+        assert!(
+            MohrCoulomb {
+                cohesion: 1.0,
+                ..strengthless
+            }
+            .check()
+            .is_ok()
+        );
+        assert!(
+            MohrCoulomb {
+                friction_angle: 1.0,
+                ..strengthless
+            }
+            .check()
+            .is_ok()
+        );
     }
 
     #[test]

@@ -7,6 +7,7 @@ use super::{
 use crate::components::RigidVelocity;
 use crate::contact::ForceApplication;
 use crate::io::output::{PROBE_PLOT_PREFIX, RUN_FILE_STEMS};
+use crate::materials::MaterialModel;
 use crate::math::Real;
 use crate::resources::{MAX_CONTACT_BODIES, PositionUpdate};
 use std::collections::{BTreeMap, BTreeSet};
@@ -280,6 +281,22 @@ impl Scene {
                     let message = format!(
                         "body '{}': geostatic stress needs gravity pointing down (g_y < 0), got {}",
                         b.name, self.gravity
+                    );
+                    return Err(fail("initial_stress", message));
+                }
+                // These models compute the stress from the deformation (F,
+                // or the density), so the first step would replace it.
+                let from_deformation = self.materials.iter().any(|m| {
+                    m.name == b.material
+                        && matches!(
+                            m.model,
+                            MaterialModel::NeoHookean(_) | MaterialModel::NewtonianFluid(_)
+                        )
+                });
+                if from_deformation {
+                    let message = format!(
+                        "body '{}': material '{}' computes its stress from the deformation (NeoHookean from F, NewtonianFluid from the density), so an initial stress would be lost at the first step; let the body settle under gravity in a stage instead",
+                        b.name, b.material
                     );
                     return Err(fail("initial_stress", message));
                 }

@@ -2,20 +2,29 @@
 
 use crate::math::{DVec2, Real};
 use exmex::prelude::*;
+use exmex::{FloatOpsFactory, MatchLiteral, literal_matcher_from_pattern};
+
+// Numbers as the rest of a scene writes them, with an exponent too
+// (2.5e-3), which exmex's own matcher does not read.
+literal_matcher_from_pattern!(ExponentNumber, r"^(\.?[0-9]+(\.[0-9]+)?([eE][+-]?[0-9]+)?)");
+
+/// One component's expression: exmex's float operators, numbers with
+/// exponents.
+type Expression = FlatEx<Real, FloatOpsFactory<Real>, ExponentNumber>;
 
 /// A compiled pair of expressions vx(x, y), vy(x, y), e.g. `x*(1-x)`.
 /// Operators and functions are those of the `exmex` crate (+ − * / ^, sin,
 /// cos, exp, sqrt, …); the only variables are `x` and `y` (m).
 #[derive(Debug)]
 pub struct VelocityField {
-    components: [FlatEx<Real>; 2],
+    components: [Expression; 2],
 }
 
 impl VelocityField {
     /// Parses both expressions; the error names the offending one.
     pub fn parse(x: &str, y: &str) -> Result<Self, String> {
-        let compile = |axis: &str, text: &str| -> Result<FlatEx<Real>, String> {
-            let expr = exmex::parse::<Real>(text)
+        let compile = |axis: &str, text: &str| -> Result<Expression, String> {
+            let expr = Expression::parse(text)
                 .map_err(|e| format!("velocity {axis} = \"{text}\": {e}"))?;
             if let Some(bad) = expr.var_names().iter().find(|v| *v != "x" && *v != "y") {
                 return Err(format!(
@@ -53,6 +62,16 @@ impl VelocityField {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn numbers_may_have_exponents() {
+        let f = VelocityField::parse("2.5e-3*y + 1E3*x", "1.5e+2 - x*1e2").unwrap();
+        let v = f.at(DVec2::new(0.5, 2.0)).unwrap();
+        assert!((v.x - (5e-3 + 500.0)).abs() < 1e-12, "{v}");
+        assert!((v.y - (150.0 - 50.0)).abs() < 1e-12, "{v}");
+        // An exponent needs its digits: "2e" is no number.
+        assert!(VelocityField::parse("2e*x", "0").is_err());
+    }
 
     #[test]
     fn evaluates_position_expressions() {
