@@ -96,9 +96,11 @@ fn listed_geostatic_column() -> Scene {
         .shape
         .fill(grid.origin, grid.cell_size, body.points_per_cell)
         .into_iter()
-        .map(|position| ListedPoint {
+        .enumerate()
+        .map(|(k, position)| ListedPoint {
             position,
             volume: Some(spacing * spacing),
+            line: k + 1,
         })
         .collect();
     scene.bodies[0].shape = Shape::Points {
@@ -142,9 +144,11 @@ fn listed_column_with_a_coarse_top() -> Scene {
         unreachable!()
     };
     points.retain(|p| p.position.y < 3.8);
+    let next = points.len() + 1;
     points.extend((0..5).map(|i| ListedPoint {
         position: DVec2::new(0.1 + 0.2 * Real::from(i), 3.9),
         volume: Some(0.2 * 0.2),
+        line: next + i as usize,
     }));
     scene
 }
@@ -227,6 +231,14 @@ fn a_listed_body_with_a_coarse_top_carries_the_surcharge_to_its_base() {
     assert!((base / expected - 1.0).abs() <= 0.03);
 }
 
+/// The file line of the first listed point of the scene's first body.
+fn points_line(scene: &Scene) -> usize {
+    let Shape::Points { points, .. } = &scene.bodies[0].shape else {
+        unreachable!()
+    };
+    points[0].line
+}
+
 #[test]
 fn a_listed_body_refuses_oversized_or_outlying_domains() {
     let mut scene = listed_geostatic_column();
@@ -238,6 +250,8 @@ fn a_listed_body_refuses_oversized_or_outlying_domains() {
     points[0].volume = Some(0.2 * 0.2 * 1.01);
     let message = common::refusal(&scene);
     assert!(message.contains("more than a cell"), "{message}");
+    let line = format!("(line {})", points_line(&scene));
+    assert!(message.contains(&line), "{message}");
     // The point (0.05, 0.05) with a domain 0.12 m wide reaches past the
     // grid's left edge at 0.
     let Shape::Points { points, .. } = &mut scene.bodies[0].shape else {
@@ -246,6 +260,11 @@ fn a_listed_body_refuses_oversized_or_outlying_domains() {
     points[0].volume = Some(0.12 * 0.12);
     let message = common::refusal(&scene);
     assert!(message.contains("is not inside the grid"), "{message}");
+    let reaching = format!(
+        "the point at [0.05, 0.05] in 'in code' (line {})",
+        points_line(&scene)
+    );
+    assert!(message.contains(&reaching), "{message}");
     // A position that is not finite, which only code can give.
     let Shape::Points { points, .. } = &mut scene.bodies[0].shape else {
         unreachable!()

@@ -24,6 +24,9 @@ pub struct ListedPoint {
     pub position: DVec2,
     /// Volume (m² per metre of thickness), > 0 when given.
     pub volume: Option<Real>,
+    /// Its line in the point file (1-based), for messages; 0 for a point
+    /// of a lattice.
+    pub line: usize,
 }
 
 impl ListedPoint {
@@ -174,7 +177,11 @@ fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, String> {
             }
             None => None,
         };
-        points.push(ListedPoint { position, volume });
+        points.push(ListedPoint {
+            position,
+            volume,
+            line,
+        });
     }
     if points.is_empty() {
         return Err(format!(
@@ -214,11 +221,13 @@ mod tests {
             vec![
                 ListedPoint {
                     position: DVec2::new(1.0, 2.0),
-                    volume: Some(0.5)
+                    volume: Some(0.5),
+                    line: 3,
                 },
                 ListedPoint {
                     position: DVec2::new(3.0, 4.0),
-                    volume: Some(0.25)
+                    volume: Some(0.25),
+                    line: 6,
                 },
             ]
         );

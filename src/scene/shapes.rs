@@ -228,6 +228,7 @@ impl Shape {
                 .map(|position| ListedPoint {
                     position,
                     volume: None,
+                    line: 0,
                 })
                 .collect(),
         }

@@ -229,18 +229,32 @@ impl Scene {
                     return Err(fail(
                         "shape",
                         format!(
-                            "body '{}': the point at {} in '{file}' has volume {volume}, more than a cell ({cell}): its domain would reach beyond the nodes next to it",
-                            b.name, p.position,
+                            "body '{}': the point at {} in '{file}' (line {}) has volume {volume}, more than a cell ({cell}): its domain would reach beyond the nodes next to it",
+                            b.name, p.position, p.line,
                         ),
                     ));
                 }
             }
             let (lo, hi) = b.shape.extent(spacing);
-            if lo.cmplt(grid_min + margin).any() || hi.cmpgt(grid_max - margin).any() {
+            let (inner_min, inner_max) = (grid_min + margin, grid_max - margin);
+            if lo.cmplt(inner_min).any() || hi.cmpgt(inner_max).any() {
+                // For a point list, the first point past the edge and its line.
+                let outside = points.iter().find(|p| {
+                    let half = p.domain(spacing).1;
+                    (p.position - half).cmplt(inner_min).any()
+                        || (p.position + half).cmpgt(inner_max).any()
+                });
+                let which = match (&b.shape, outside) {
+                    (Shape::Points { file, .. }, Some(p)) => format!(
+                        ": the point at {} in '{file}' (line {}) reaches past it",
+                        p.position, p.line
+                    ),
+                    _ => String::new(),
+                };
                 return Err(fail(
                     "shape",
                     format!(
-                        "body '{}' (from {lo} to {hi}) is not inside the grid (from {grid_min} to {grid_max}{})",
+                        "body '{}' (from {lo} to {hi}) is not inside the grid (from {grid_min} to {grid_max}{}){which}",
                         b.name,
                         if margin > 0.0 {
                             format!(", less a margin of {margin} m that the B-spline needs")
