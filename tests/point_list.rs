@@ -231,6 +231,20 @@ fn a_listed_body_with_a_coarse_top_carries_the_surcharge_to_its_base() {
     assert!((base / expected - 1.0).abs() <= 0.03);
 }
 
+#[test]
+fn a_point_lists_line_numbers_are_not_part_of_the_scene() {
+    // A comment added to the file moves the lines, not the points: a
+    // checkpoint of the scene still resumes.
+    let scene = listed_geostatic_column();
+    let mut moved = scene.clone();
+    let Shape::Points { points, .. } = &mut moved.bodies[0].shape else {
+        unreachable!()
+    };
+    points.iter_mut().for_each(|p| p.line += 1);
+    use mpdem::io::checkpoint::scene_fingerprint;
+    assert_eq!(scene_fingerprint(&scene), scene_fingerprint(&moved));
+}
+
 /// The file line of the first listed point of the scene's first body.
 fn points_line(scene: &Scene) -> usize {
     let Shape::Points { points, .. } = &scene.bodies[0].shape else {

@@ -35,7 +35,7 @@ use crate::resources::{
     EdgeConditions, EnergyLog, Gravity, Grid, ProbeSample, Probes, Settings, StageEndReason,
     StageLog, StagePlan, StageProgress,
 };
-use crate::scene::{OutputSpec, Scene, SceneError, spawn_block};
+use crate::scene::{OutputSpec, Scene, SceneError, Shape, spawn_block};
 use bevy_ecs::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
@@ -154,6 +154,13 @@ pub fn scene_fingerprint(scene: &Scene) -> u64 {
     fixed.name = None;
     fixed.time.end = 0.0;
     fixed.output = OutputSpec::default();
+    // A point list's line numbers are for messages: a comment added to the
+    // file does not make another scene.
+    for body in &mut fixed.bodies {
+        if let Shape::Points { points, .. } = &mut body.shape {
+            points.iter_mut().for_each(|p| p.line = 0);
+        }
+    }
     let mut hasher = StateHasher::default();
     // Writing into the hasher cannot fail.
     let _ = write!(hasher, "{fixed:?}");

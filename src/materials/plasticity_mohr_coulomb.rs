@@ -65,7 +65,8 @@ pub struct MohrCoulomb {
     /// Poisson's ratio ν in (−1, 0.5).
     #[serde(deserialize_with = "crate::scene::rules::de_poisson_ratio")]
     pub poisson_ratio: Real,
-    /// Friction angle φ (degrees), in [0, 90).
+    /// Friction angle φ (degrees), in [0, 90); not 0 together with a
+    /// cohesion of 0 (no strength: `DruckerPrager` models such a solid).
     #[serde(deserialize_with = "de_angle")]
     pub friction_angle: Real,
     /// Dilation angle ψ (degrees), in [0, φ]. Default 0: no volume change in

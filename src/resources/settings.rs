@@ -98,7 +98,8 @@ pub struct Settings {
     /// cell a freely spinning block's spin goes into strain and back and
     /// the block does not turn (`tests/spin.rs`). C_p starts at zero, so
     /// the first P2G is eq. 8c's. Default `false`, the paper's eq. 8c; not
-    /// with XPIC, whose smoothing maps velocities without it.
+    /// with XPIC, whose smoothing maps velocities without it, nor with the
+    /// `Linear` kernel (points invert in ordinary flows).
     pub affine_transfer: bool,
 }
 

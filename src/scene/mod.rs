@@ -182,7 +182,8 @@ pub struct BodySpec {
     /// Initial velocity. Default: at rest, the usual start of a quasi-static run.
     #[serde(default)]
     pub velocity: InitialVelocity,
-    /// Initial stress. Default: none (stress free).
+    /// Initial stress. Default: none (stress free). Not for `NeoHookean` or
+    /// `NewtonianFluid` bodies, whose stress follows the deformation.
     #[serde(default)]
     pub initial_stress: Option<InitialStress>,
     /// Velocity constraints on nodes of this body's layer. Default: none.

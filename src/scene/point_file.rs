@@ -24,12 +24,21 @@ pub struct ListedPoint {
     pub position: DVec2,
     /// Volume (m² per metre of thickness), > 0 when given.
     pub volume: Option<Real>,
-    /// Its line in the point file (1-based), for messages; 0 for a point
-    /// of a lattice.
+    /// Its line in the point file (1-based), for messages; 0 when it has
+    /// none (a lattice's point, or one listed in code).
     pub line: usize,
 }
 
 impl ListedPoint {
+    /// " (line n)" for messages, or nothing for a point without a line.
+    pub fn at_line(&self) -> String {
+        if self.line > 0 {
+            format!(" (line {})", self.line)
+        } else {
+            String::new()
+        }
+    }
+
     /// The point's volume and uGIMP domain half-size: a square of the listed
     /// area (half-size √V / 2), or the lattice's for the point spacing
     /// `spacing` (h / n).

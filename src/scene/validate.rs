@@ -229,8 +229,10 @@ impl Scene {
                     return Err(fail(
                         "shape",
                         format!(
-                            "body '{}': the point at {} in '{file}' (line {}) has volume {volume}, more than a cell ({cell}): its domain would reach beyond the nodes next to it",
-                            b.name, p.position, p.line,
+                            "body '{}': the point at {} in '{file}'{} has volume {volume}, more than a cell ({cell}): its domain would reach beyond the nodes next to it",
+                            b.name,
+                            p.position,
+                            p.at_line(),
                         ),
                     ));
                 }
@@ -246,8 +248,9 @@ impl Scene {
                 });
                 let which = match (&b.shape, outside) {
                     (Shape::Points { file, .. }, Some(p)) => format!(
-                        ": the point at {} in '{file}' (line {}) reaches past it",
-                        p.position, p.line
+                        ": the point at {} in '{file}'{} reaches past it",
+                        p.position,
+                        p.at_line()
                     ),
                     _ => String::new(),
                 };

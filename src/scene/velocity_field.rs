@@ -6,7 +6,7 @@ use exmex::{FloatOpsFactory, MatchLiteral, literal_matcher_from_pattern};
 
 // Numbers as the rest of a scene writes them, with an exponent too
 // (2.5e-3), which exmex's own matcher does not read.
-literal_matcher_from_pattern!(ExponentNumber, r"^(\.?[0-9]+(\.[0-9]+)?([eE][+-]?[0-9]+)?)");
+literal_matcher_from_pattern!(ExponentNumber, r"^(\.?[0-9]+(\.[0-9]*)?([eE][+-]?[0-9]+)?)");
 
 /// One component's expression: exmex's float operators, numbers with
 /// exponents.
@@ -69,6 +69,9 @@ mod tests {
         let v = f.at(DVec2::new(0.5, 2.0)).unwrap();
         assert!((v.x - (5e-3 + 500.0)).abs() < 1e-12, "{v}");
         assert!((v.y - (150.0 - 50.0)).abs() < 1e-12, "{v}");
+        // A trailing dot is a number too, as exmex's own matcher reads it.
+        let f = VelocityField::parse("3.", "1./(x + 1)").unwrap();
+        assert_eq!(f.at(DVec2::new(1.0, 0.0)).unwrap(), DVec2::new(3.0, 0.5));
         // An exponent needs its digits: "2e" is no number.
         assert!(VelocityField::parse("2e*x", "0").is_err());
     }
