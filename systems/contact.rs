@@ -7,7 +7,7 @@ use crate::components::{
 };
 use crate::contact::{disk_shape_contact, overlap_area, overlap_area_integral, pair_force};
 use crate::math::{DVec2, Real};
-use crate::resources::{Clock, ContactSettings, Penetration};
+use crate::resources::{Clock, ContactSettings, Geometry, Penetration, Settings};
 use crate::rigid::velocity_at;
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
@@ -35,7 +35,9 @@ type BlockData = (
 /// the depth and the normal from block to point; δ is that depth or the
 /// disk's overlap area, per `ContactSettings::penetration`), then eq. 18 with
 /// the pair's tangential spring from the previous step (dropped on
-/// separation) and the relative velocity at the contact point x_c:
+/// separation; in axisymmetry the law's stiffnesses per metre times the
+/// contact's radius, so forces are per radian) and the relative velocity
+/// at the contact point x_c:
 /// * for a pair in contact last step, the actual motion over that step of
 ///   the material at last step's contact point relative to the block's
 ///   surface point it touched: (Δx_p + L_p (x_c − x_p) Δt − Δx_surface)/Δt,
@@ -57,12 +59,13 @@ type BlockData = (
 /// torque about the centre of mass to the block's `Reaction`, both summed in
 /// that fixed order.
 ///
-/// Reads: `Clock`, `ContactSettings`, blocks (shape, pose, velocity, mass, law, neighbour list),
+/// Reads: `Clock`, `ContactSettings`, `Settings::geometry`, blocks (shape, pose, velocity, mass, law, neighbour list),
 /// `MaterialPoints` (position, velocity, velocity gradient, contact radius).
 /// Writes: `MaterialPoints::contact_force`, `BlockContacts`, `Reaction`.
 pub fn compute_rigid_contacts(
     clock: Res<Clock>,
     settings: Res<ContactSettings>,
+    numerics: Res<Settings>,
     mut order: Local<Vec<(u32, Entity)>>,
     mut found: Local<Vec<Option<PointContact>>>,
     mut bodies: Query<&mut MaterialPoints>,
@@ -114,7 +117,10 @@ pub fn compute_rigid_contacts(
                     None => points.velocity[i] - velocity_at(pose, velocity, mass, geometry.point),
                 };
                 let carried = before.map_or(DVec2::ZERO, |c| c.tangential);
-                let law = &law.0;
+                let law = &match numerics.geometry {
+                    Geometry::PlaneStrain => law.0,
+                    Geometry::Axisymmetric => law.0.over_thickness(geometry.point.x),
+                };
                 let (delta, normal_potential) = match settings.penetration {
                     Penetration::Depth => (geometry.depth, 0.5 * geometry.depth.powi(2)),
                     Penetration::Area => (

@@ -2,17 +2,19 @@
 
 use crate::components::{GridLayer, MaterialPoints, TransferScratch};
 use crate::math::{DVec2, Real, local_damping};
-use crate::resources::{Clock, Settings, SharedLayers};
+use crate::resources::{Clock, Geometry, Settings, SharedLayers};
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
-/// Scatters the internal force f_i,int = −Σ_p V_p σ_p · G_ip, sums it over
+/// Scatters the internal force f_i,int = −Σ_p V_p σ_p · G_ip (in
+/// axisymmetry also −Σ_p V_p σ_θθ,p S_ip / r_p along r), sums it over
 /// the layers of a contact group (`SharedLayers`), then per node
 /// f_i = f_ext + f_int, less grid damping α_g |f| sign(v) per component
 /// (Cundall 1987), p_i ← p_i + f_i Δt and v_i^{n+1} = p_i / m_i, constrained;
 /// with grid damping, also the undamped v^{n+1} for the energy balance.
 ///
-/// Reads: `Settings`, `Clock`, `MaterialPoints` (volume, stress),
+/// Reads: `Settings`, `Clock`, `MaterialPoints` (volume, stress; in
+/// axisymmetry position and half-size),
 /// `TransferScratch::stencils` and `order`, `GridLayer::nodes` (mass, external force, velocity).
 /// Writes: `TransferScratch::internal_force`, `GridLayer::nodes` (internal force, momentum, new velocity),
 /// `SharedLayers` (scratch), `TransferScratch::undamped`.
@@ -30,12 +32,27 @@ pub fn solve_nodal_momentum(
             internal_force,
             ..
         } = &mut *scratch;
-        internal_force.scatter(
-            stencils,
-            order,
-            |p| (points.volume[p], points.stress[p]),
-            |(volume, stress), _, g, _| -*volume * stress.dot(g),
-        );
+        match settings.geometry {
+            Geometry::PlaneStrain => internal_force.scatter(
+                stencils,
+                order,
+                |p| (points.volume[p], points.stress[p]),
+                |(volume, stress), _, g, _| -*volume * stress.dot(g),
+            ),
+            // The hoop stress's share of the virtual work, σ_θθ δε_θθ with
+            // δε_θθ = δu_r N_i / r: −V_p σ_θθ S_ip / r_p along r.
+            Geometry::Axisymmetric => internal_force.scatter(
+                stencils,
+                order,
+                |p| {
+                    let hoop = points.stress[p].zz / points.hoop_radius(p);
+                    (points.volume[p], points.stress[p], hoop)
+                },
+                |(volume, stress, hoop), w, g, _| {
+                    -*volume * (stress.dot(g) + DVec2::new(hoop * w, 0.0))
+                },
+            ),
+        }
         let window = layer.window();
         internal_force.add_into(layer.nodes_mut(), window, |n, f| n.internal_force += f);
     }

@@ -1,9 +1,11 @@
 //! Algorithm 1, line 13: strain rate at the points and the constitutive update.
 
-use crate::components::{GridLayer, GridNode, Material, MaterialPoints, TransferScratch};
+use crate::components::{
+    GridLayer, GridNode, Material, MaterialPoints, TransferScratch, hoop_radius,
+};
 use crate::materials::{ConstitutiveModel, MaterialModel, PointStep};
 use crate::math::{DMat2, Real, outer, rate_of_deformation, spin};
-use crate::resources::{Clock, UpdateScheme};
+use crate::resources::{Clock, Geometry, Settings, UpdateScheme};
 use crate::shape_functions::Stencil;
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -11,16 +13,23 @@ use rayon::prelude::*;
 
 /// For every point: velocity gradient L_p = Σ_i v_i ⊗ G_ip, deformation
 /// gradient F ← (I + L Δt) F, volume V = det(F) V⁰, stress from the body's
-/// model with D = sym L and W = skew L, strain ε += D Δt. USF uses the nodal
+/// model with D = sym L and W = skew L, strain ε += D Δt. In axisymmetry
+/// D_zz is the hoop rate ε̇_θθ = Σ_i S_ip v_i,r / r_p and the volume
+/// V = det(F) F_θθ V⁰ with F_θθ = r / R (the point's radius now over its
+/// first, times 1 + ε̇_θθ Δt for the step). USF uses the nodal
 /// velocity at the start of the step, USL the updated one; both with the
 /// gradients at x^n. The scheme is fixed here, with the order of the sets,
 /// when the schedule is built.
 ///
-/// Reads: `Clock`, `GridLayer`, `TransferScratch::stencils`, `Material`.
+/// Reads: `Clock`, `Settings::geometry`, `GridLayer`, `TransferScratch::stencils`, `Material`,
+/// `MaterialPoints` (in axisymmetry position, first position, half-size).
 /// Writes: `MaterialPoints` (deformation gradient, volume, stress, strain).
-pub fn update_stress(scheme: UpdateScheme) -> impl FnMut(Res<Clock>, Query<StressUpdateData>) {
+pub fn update_stress(
+    scheme: UpdateScheme,
+) -> impl FnMut(Res<Clock>, Res<Settings>, Query<StressUpdateData>) {
     let after_momentum = scheme == UpdateScheme::Usl;
-    move |clock, mut bodies| {
+    move |clock, settings, mut bodies| {
+        let geometry = settings.geometry;
         for (material, mut points, layer, scratch) in &mut bodies {
             let window = layer.window();
             let step = StrainStep {
@@ -29,6 +38,7 @@ pub fn update_stress(scheme: UpdateScheme) -> impl FnMut(Res<Clock>, Query<Stres
                 row_len: window.width(),
                 dt: clock.dt,
                 after_momentum,
+                geometry,
             };
             match &material.model {
                 MaterialModel::LinearElastic(m) => step.apply(m, &mut points, &scratch.stencils),
@@ -59,6 +69,7 @@ struct StrainStep<'a> {
     row_len: usize,
     dt: Real,
     after_momentum: bool,
+    geometry: Geometry,
 }
 
 impl StrainStep<'_> {
@@ -74,8 +85,12 @@ impl StrainStep<'_> {
             strain,
             volume,
             initial_volume,
+            position,
+            initial_position,
+            half_size,
             ..
         } = points;
+        let axisymmetric = self.geometry == Geometry::Axisymmetric;
         (
             deformation_gradient.par_iter_mut(),
             stress.par_iter_mut(),
@@ -86,11 +101,24 @@ impl StrainStep<'_> {
         )
             .into_par_iter()
             .with_min_len(MIN_POINTS_PER_TASK)
-            .for_each(|(f, sigma, eps, v, v0, stencil)| {
+            .zip((
+                position.par_iter(),
+                initial_position.par_iter(),
+                half_size.par_iter(),
+            ))
+            .for_each(|((f, sigma, eps, v, v0, stencil), (x, x0, half))| {
                 let l = self.velocity_gradient(stencil);
                 *f = (DMat2::IDENTITY + l * self.dt) * *f;
-                *v = f.determinant() * v0;
-                let d = rate_of_deformation(l);
+                let mut d = rate_of_deformation(l);
+                if axisymmetric {
+                    // ε̇_θθ = v_r / r; F_θθ = r / R at the end of the step.
+                    let r = hoop_radius(*x, *half);
+                    d.zz = self.radial_velocity(stencil) / r;
+                    let hoop_stretch = r / hoop_radius(*x0, *half) * (1.0 + d.zz * self.dt);
+                    *v = f.determinant() * hoop_stretch * v0;
+                } else {
+                    *v = f.determinant() * v0;
+                }
                 let step = PointStep {
                     d,
                     w: spin(l),
@@ -100,6 +128,26 @@ impl StrainStep<'_> {
                 model.update_stress(sigma, &step);
                 *eps += d * self.dt;
             });
+    }
+
+    /// The radial velocity at the point, Σ_i S_ip v_i,r (axisymmetry).
+    #[inline(always)]
+    fn radial_velocity(&self, stencil: &Stencil) -> Real {
+        let after = self.after_momentum;
+        stencil.gather(
+            self.nodes,
+            self.origin,
+            self.row_len,
+            0.0,
+            |u, node, w, _| {
+                let v = if after {
+                    node.velocity_new
+                } else {
+                    node.velocity
+                };
+                u + w * v.x
+            },
+        )
     }
 
     #[inline(always)]

@@ -3,7 +3,7 @@
 use super::contact_transfer::add_with_hat_functions;
 use crate::components::{GridLayer, MaterialPoints};
 use crate::math::DVec2;
-use crate::resources::{Grid, StagePlan};
+use crate::resources::{Grid, Settings, StagePlan};
 use crate::scene::Side;
 use bevy_ecs::prelude::*;
 
@@ -15,12 +15,14 @@ use bevy_ecs::prelude::*;
 /// the part of its domain below the centre: the outermost points then
 /// carry about half the traction, and the top cell of a column under a
 /// surcharge 70% of it.) The loads are dead: fixed forces, in the order
-/// the stages set them.
+/// the stages set them. In axisymmetry a force per metre of the edge
+/// times the edge's radius: per radian.
 ///
-/// Reads: `Grid`, `StagePlan`, `MaterialPoints` (position, half-size).
+/// Reads: `Grid`, `Settings::geometry`, `StagePlan`, `MaterialPoints` (position, half-size).
 /// Writes: `GridLayer` (external force).
 pub fn apply_surface_loads(
     grid: Res<Grid>,
+    settings: Res<Settings>,
     plan: Option<Res<StagePlan>>,
     mut bodies: Query<(&MaterialPoints, &mut GridLayer)>,
 ) {
@@ -40,6 +42,7 @@ pub fn apply_surface_loads(
         for &(p, force) in &load.forces {
             let p = p as usize;
             let edge = points.position[p] + outward * points.half_size[p];
+            let force = force * settings.geometry.thickness(edge);
             add_with_hat_functions(&grid, &mut layer, edge, force);
         }
     }

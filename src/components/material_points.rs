@@ -163,6 +163,12 @@ impl MaterialPoints {
         self.contact_force.push(DVec2::ZERO);
     }
 
+    /// The radius at which point `p`'s hoop terms are taken in axisymmetry:
+    /// [`hoop_radius`] of its position and domain.
+    pub fn hoop_radius(&self, p: usize) -> Real {
+        hoop_radius(self.position[p], self.half_size[p])
+    }
+
     /// Displacement of point `p` from its initial position.
     pub fn displacement(&self, p: usize) -> DVec2 {
         self.position[p] - self.initial_position[p]
@@ -213,4 +219,17 @@ impl MaterialPoints {
             .map(|(m, v)| *m * *v)
             .sum()
     }
+}
+
+/// The radius r at which a point at `position` with domain half-size
+/// `half_size` takes its hoop terms (σ_θθ / r, v_r / r) in axisymmetry:
+/// its centre's, but at least a quarter of its domain's width from the
+/// axis. The grid holds the axis's radial velocity at zero, so the
+/// interpolated velocity of a point near the axis shrinks with r and
+/// never carries it there; only a wall's clamp (a point whose PIC/FLIP
+/// velocity would cross the axis is put on it) brings a centre closer,
+/// and the floor keeps its hoop terms finite.
+#[inline]
+pub fn hoop_radius(position: DVec2, half_size: DVec2) -> Real {
+    position.x.max(0.5 * half_size.x)
 }

@@ -13,7 +13,9 @@ pub use body::{
     bodies_in_scene_order, sort_into_scene_order,
 };
 pub use grid_layer::{Fix, GridLayer, GridNode, NodeConstraint, NodeRect, WINDOW_MARGIN_NODES};
-pub use material_points::{DampedEnergy, MaterialPoints, NewPoint, PointEnergies, StepTravel};
+pub use material_points::{
+    DampedEnergy, MaterialPoints, NewPoint, PointEnergies, StepTravel, hoop_radius,
+};
 pub use rigid::{
     BlockContactLaw, BlockContacts, BlockId, BlockOutline, NeighbourList, PartReactions,
     PointContact, Pose, Reaction, RigidMass, RigidMotion, RigidShape, RigidVelocity,

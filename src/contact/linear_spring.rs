@@ -49,6 +49,19 @@ impl ContactLaw {
         tangential.length_squared() / (2.0 * self.tangential_stiffness)
     }
 
+    /// The law for a contact `thickness` metres long out of the plane (per
+    /// radian in axisymmetry: the contact's radius): stiffnesses and damping
+    /// times it, the friction unchanged. Forces and energies then come per
+    /// unit of thickness the outputs count in.
+    pub fn over_thickness(&self, thickness: Real) -> ContactLaw {
+        ContactLaw {
+            normal_stiffness: self.normal_stiffness * thickness,
+            tangential_stiffness: self.tangential_stiffness * thickness,
+            friction: self.friction,
+            normal_damping: self.normal_damping * thickness,
+        }
+    }
+
     /// The law of a contact between two blocks with laws `self` and `other`:
     /// the softer stiffnesses, the smaller friction and the larger damping.
     pub fn pair(&self, other: &ContactLaw) -> ContactLaw {

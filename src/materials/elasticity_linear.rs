@@ -1,6 +1,6 @@
-//! Isotropic linear elasticity in plane strain with the Jaumann objective
-//! stress rate: σ̇ = λ tr(D) I + 2μ D + W σ − σ W (D_zz = 0, so σ_zz
-//! follows λ tr D).
+//! Isotropic linear elasticity with the Jaumann objective stress rate:
+//! σ̇ = λ tr(D) I + 2μ D + W σ − σ W. In plane strain D_zz = 0, so σ_zz
+//! follows λ tr D; in axisymmetry D_zz is the hoop rate v_r / r.
 
 use super::{ConstitutiveModel, PointStep, jaumann_rotation};
 use crate::math::{DMat2, Real, SymTensor};
@@ -43,13 +43,13 @@ impl ConstitutiveModel for LinearElastic {
     #[inline]
     fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) {
         let PointStep { d, w, dt, .. } = *step;
-        let lambda_tr = self.lame_lambda() * (d.xx + d.yy) * dt;
+        let lambda_tr = self.lame_lambda() * (d.xx + d.yy + d.zz) * dt;
         let two_mu = 2.0 * self.shear_modulus() * dt;
         let elastic = SymTensor::new(
             lambda_tr + two_mu * d.xx,
             lambda_tr + two_mu * d.yy,
             two_mu * d.xy,
-            lambda_tr,
+            lambda_tr + two_mu * d.zz,
         );
         *stress += jaumann_rotation(stress, w, dt) + elastic;
     }

@@ -23,7 +23,8 @@ use serde::{Deserialize, Serialize};
 /// The motion of one material point over one step, as a model sees it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointStep {
-    /// Rate of deformation D = sym L (1/s).
+    /// Rate of deformation D = sym L (1/s); D_zz is 0 in plane strain and
+    /// the hoop rate v_r / r in axisymmetry.
     pub d: SymTensor,
     /// In-plane spin W_xy = ½ (L_xy − L_yx) (1/s).
     pub w: Real,

@@ -25,6 +25,6 @@ pub use records::{
     BlockLog, BlockPartSample, BlockSample, BodyPairLog, BodyPairSample, EnergyLog, EnergySample,
     Probe, ProbeSample, Probes,
 };
-pub use settings::{Gravity, PositionUpdate, Settings, UpdateScheme};
+pub use settings::{Geometry, Gravity, PositionUpdate, Settings, UpdateScheme};
 pub use shared_layers::SharedLayers;
 pub use stages::{AppliedLoad, StageEndReason, StageLog, StagePlan, StageProgress, StageRecord};

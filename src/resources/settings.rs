@@ -54,6 +54,34 @@ pub enum PositionUpdate {
     Remapped,
 }
 
+/// What the plane of the simulation stands for (scene `settings.geometry`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Geometry {
+    /// A slice of unit thickness of a long body: ε_zz = 0, masses, forces
+    /// and energies per metre. Default, as the paper.
+    #[default]
+    PlaneStrain,
+    /// A body of revolution about the y axis, the plane its meridian
+    /// (x = r ≥ 0, y = z): ε_θθ = v_r / r (σ_zz is the hoop stress σ_θθ),
+    /// and masses, volumes, forces and energies per radian (a point of
+    /// area A at radius r holds V = A r). The grid's left edge is the axis.
+    Axisymmetric,
+}
+
+impl Geometry {
+    /// The extent out of the plane, per unit the outputs are counted in, of
+    /// material at `at`: 1 m in plane strain, the radius r (m per radian)
+    /// in axisymmetry. Volumes, masses, loads and contact stiffnesses given
+    /// per metre of thickness are multiplied by it.
+    #[inline]
+    pub fn thickness(self, at: DVec2) -> Real {
+        match self {
+            Self::PlaneStrain => 1.0,
+            Self::Axisymmetric => at.x,
+        }
+    }
+}
+
 /// Numerical choices of a simulation (scene `settings`).
 #[derive(Resource, Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -101,6 +129,8 @@ pub struct Settings {
     /// with XPIC, whose smoothing maps velocities without it, nor with the
     /// `Linear` kernel (points invert in ordinary flows).
     pub affine_transfer: bool,
+    /// Plane strain or axisymmetry (default `PlaneStrain`, as the paper).
+    pub geometry: Geometry,
 }
 
 impl Default for Settings {
@@ -114,6 +144,7 @@ impl Default for Settings {
             particle_damping: 0.0,
             position_update: PositionUpdate::Midpoint,
             affine_transfer: false,
+            geometry: Geometry::PlaneStrain,
         }
     }
 }

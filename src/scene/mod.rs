@@ -5,6 +5,7 @@
 //! default and why. Units are SI; the model is plane strain with unit
 //! thickness, so masses, forces and energies are per metre.
 
+mod axisymmetry;
 mod contact_stability;
 mod layout_warnings;
 mod location;

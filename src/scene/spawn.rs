@@ -257,7 +257,9 @@ fn fill_body(
     let mut points = MaterialPoints::default();
     for point in &listed {
         let position = point.position;
-        let (volume, half_size) = point.domain(spacing);
+        let (area, half_size) = point.domain(spacing);
+        // Per metre in plane strain, per radian (A r) in axisymmetry.
+        let volume = area * scene.settings.geometry.thickness(position);
         let velocity = velocity_at(position)?;
         let stress = match spec.initial_stress {
             Some(InitialStress::Geostatic { k0, surface }) => {

@@ -73,7 +73,12 @@ pub fn spawn_block(
         };
         let name = world.get::<BodyName>(body).map_or("", |n| n.0.as_str());
         warnings.extend(overlap_warning(&spec.name, name, points, &shape, &pose));
-        let lightest = points.mass.iter().copied().fold(Real::INFINITY, Real::min);
+        // Per metre of contact: in axisymmetry both the point's mass and
+        // the spring go with the radius.
+        let geometry = scene.settings.geometry;
+        let lightest = (0..points.len())
+            .map(|p| points.mass[p] / geometry.thickness(points.position[p]))
+            .fold(Real::INFINITY, Real::min);
         // In `Area` mode the stiffness is per area; the largest slope of the
         // overlap area, d A / d δ = 2 r at δ = r, makes it a spring.
         let widest = points.contact_radius.iter().copied().fold(0.0, Real::max);

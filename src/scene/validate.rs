@@ -1,5 +1,6 @@
 //! Consistency checks of a whole scene: ranges, names and geometry.
 
+use super::axisymmetry::axisymmetry_error;
 use super::{
     InitialStress, InitialVelocity, MotionSpec, Scene, SceneError, Shape, SourceLocation,
     VelocityField, rules,
@@ -331,6 +332,10 @@ impl Scene {
             }
         }
 
+        if let Some((anchors, message)) = axisymmetry_error(self) {
+            let anchors: Vec<&str> = anchors.iter().map(String::as_str).collect();
+            return Err(invalid(&anchors, message));
+        }
         if let Some(r) = contact_radius_error(self) {
             return Err(invalid(&["bodies", &quoted(&r.0), "contact_radius"], r.1));
         }
