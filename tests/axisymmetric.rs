@@ -247,3 +247,26 @@ fn what_a_body_of_revolution_cannot_have_is_refused_with_its_line() {
         Scene::parse(&edited, Path::new("column.ron")).unwrap_or_else(|e| panic!("{to}: {e}"));
     }
 }
+
+#[test]
+fn an_axisymmetric_run_is_the_same_on_one_and_two_threads() {
+    // Cells halved and 3 × 3 points per cell: 3 600 points, several
+    // parallel tasks per loop.
+    let finer = COLUMN_ON_FLOOR
+        .replacen("cell_size: 0.05", "cell_size: 0.025", 1)
+        .replacen("cells: (14, 16)", "cells: (28, 32)", 1)
+        .replacen("points_per_cell: 2", "points_per_cell: 3", 1);
+    let scene =
+        Scene::parse(&finer, Path::new("column_on_floor.ron")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.bodies[0].points_per_cell, 3);
+    let hash = |threads| {
+        common::with_threads(threads, || {
+            let mut sim = Simulation::from_scene(&scene).unwrap_or_else(|e| panic!("{e}"));
+            for _ in 0..200 {
+                sim.step().unwrap_or_else(|e| panic!("{e}"));
+            }
+            sim.state_hash()
+        })
+    };
+    assert_eq!(hash(1), hash(2));
+}

@@ -51,6 +51,33 @@ fn reduced_pile_penetrates_stably_through_its_stages() {
 }
 
 #[test]
+fn reduced_axisymmetric_pile_meets_more_resistance_than_the_plane_one() {
+    // The same reduced scene as a body of revolution: the cone then pushes
+    // the sand aside in every direction around it, as a spherical cavity
+    // expands, where the plane-strain wedge pushes it aside as a
+    // cylindrical one; Vesić's (1972) limit pressures for this sand are
+    // 12.9 p₀ against 6.9 p₀. q_c = 2 f_c / R² against f_c / R.
+    let q_at = |file: &str| {
+        let mut scene = reduced_scene(2.0);
+        scene.settings.geometry = common::load_scene(file).settings.geometry;
+        let sim = common::run_scene(&scene);
+        let curve = cone_resistance(&sim, RADIUS).unwrap_or_else(|e| panic!("{e}"));
+        mean_between(&curve, 1.5, 2.0).unwrap_or(Real::NAN)
+    };
+    let plane = q_at("pile_penetration.ron");
+    let axisymmetric = q_at("pile_penetration_axisymmetric.ron");
+    println!(
+        "reduced pile, q_c over z/R 1.5–2: plane strain {:.3} MPa, axisymmetric {:.3} MPa",
+        plane / 1e6,
+        axisymmetric / 1e6
+    );
+    // Measured 1.69 times here and 1.43 times over z/R ≥ 6 at full size;
+    // a fifth more is asked, well clear of both a plane result (1.0) and
+    // of the noise between runs of nearby settings (a few percent).
+    assert!(axisymmetric > 1.2 * plane, "{axisymmetric} against {plane}");
+}
+
+#[test]
 #[ignore = "the full pile scene: about 8 minutes on 2 cores"]
 fn full_pile_reaches_the_published_plateau() {
     // The target: a plateau of q_c between 4 and 6 MPa (Susila and

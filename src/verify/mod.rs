@@ -163,6 +163,13 @@ pub const CASES: &[Case] = &[
         run: pile::run,
     },
     Case {
+        name: "pile_penetration_axisymmetric",
+        source: "paper 4.3, as a body of revolution",
+        about: "the same pile and sand axisymmetric, Susila and Hryciw's geometry: q_c = 2 f_c / R²",
+        minutes: 6.0,
+        run: pile::run_axisymmetric,
+    },
+    Case {
         name: "dam_break",
         source: "paper 4.5.2",
         about: "dam break on an elastic cantilever beam: the impact on the beam",
