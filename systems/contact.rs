@@ -36,7 +36,7 @@ type BlockData = (
 /// disk's overlap area, per `ContactSettings::penetration`), then eq. 18 with
 /// the pair's tangential spring from the previous step (dropped on
 /// separation; in axisymmetry the law's stiffnesses per metre times the
-/// contact's radius, so forces are per radian) and the relative velocity
+/// point's radius, as its mass is, so forces are per radian) and the relative velocity
 /// at the contact point x_c:
 /// * for a pair in contact last step, the actual motion over that step of
 ///   the material at last step's contact point relative to the block's
@@ -119,7 +119,7 @@ pub fn compute_rigid_contacts(
                 let carried = before.map_or(DVec2::ZERO, |c| c.tangential);
                 let law = &match numerics.geometry {
                     Geometry::PlaneStrain => law.0,
-                    Geometry::Axisymmetric => law.0.over_thickness(geometry.point.x),
+                    Geometry::Axisymmetric => law.0.over_thickness(points.hoop_radius(i)),
                 };
                 let (delta, normal_potential) = match settings.penetration {
                     Penetration::Depth => (geometry.depth, 0.5 * geometry.depth.powi(2)),
@@ -129,6 +129,7 @@ pub fn compute_rigid_contacts(
                     ),
                 };
                 let f = pair_force(law, delta, geometry.normal, relative, carried, clock.dt);
+                let tangential_potential = law.tangential_energy(f.tangential);
                 Some(PointContact {
                     body,
                     point: p,
@@ -137,8 +138,8 @@ pub fn compute_rigid_contacts(
                     at: geometry.point,
                     at_on_block: pose.to_block(geometry.point),
                     from: points.position[i],
-                    potential: law.normal_stiffness * normal_potential
-                        + law.tangential_energy(f.tangential),
+                    potential: law.normal_stiffness * normal_potential + tangential_potential,
+                    tangential_potential,
                 })
             })
             .collect_into_vec(&mut found);

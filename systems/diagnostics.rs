@@ -1,9 +1,8 @@
 //! End of the step: finiteness check, clock, probes, energies, blocks and body pairs.
 
 use crate::components::{
-    BlockContactLaw, BlockContacts, BlockId, BodyIndex, BodyName, DampedEnergy, Material,
-    MaterialPoints, PartReactions, PointEnergies, Pose, Reaction, RigidVelocity,
-    sort_into_scene_order,
+    BlockContacts, BlockId, BodyIndex, BodyName, DampedEnergy, Material, MaterialPoints,
+    PartReactions, PointEnergies, Pose, Reaction, RigidVelocity, sort_into_scene_order,
 };
 use crate::math::DVec2;
 use crate::resources::{
@@ -113,8 +112,8 @@ fn sample_due(clock: &Clock, probes: &Probes) -> bool {
 /// failed (a broken state is never recorded).
 ///
 /// Reads: `Clock`, `Diagnostics`, `Gravity`, `MaterialPoints`, `Material`,
-/// `BodyIndex`, `BodyContacts`, `BlockContacts` and `BlockContactLaw` (the
-/// contact springs' energy), `ContactWork`, `DampedEnergy`. Writes: `Probes`,
+/// `BodyIndex`, `BodyContacts`, `BlockContacts` (the contact springs'
+/// energy), `ContactWork`, `DampedEnergy`. Writes: `Probes`,
 /// `EnergyLog`.
 #[allow(clippy::too_many_arguments)] // one resource or query per energy term
 pub fn record_probes_and_energy(
@@ -133,7 +132,7 @@ pub fn record_probes_and_energy(
         &Material,
         &DampedEnergy,
     )>,
-    blocks: Query<(Entity, &BlockId, &BlockContacts, &BlockContactLaw)>,
+    blocks: Query<(Entity, &BlockId, &BlockContacts)>,
 ) {
     if diagnostics.failure.is_some() || !sample_due(&clock, &probes) {
         return;
@@ -146,10 +145,10 @@ pub fn record_probes_and_energy(
     sample.damped = ordered().map(|b| b.4.0).sum();
     sort_into_scene_order(block_order, blocks.iter().map(|(e, id, ..)| (id.index, e)));
     let (mut springs, mut tangential) = body_contacts.spring_energies();
-    for (_, _, contacts, law) in block_order.iter().filter_map(|(_, e)| blocks.get(*e).ok()) {
+    for (_, _, contacts) in block_order.iter().filter_map(|(_, e)| blocks.get(*e).ok()) {
         for c in &contacts.current {
             springs += c.potential;
-            tangential += law.0.tangential_energy(c.tangential);
+            tangential += c.tangential_potential;
         }
     }
     sample.contact = springs;

@@ -15,8 +15,10 @@ use rayon::prelude::*;
 /// gradient F ← (I + L Δt) F, volume V = det(F) V⁰, stress from the body's
 /// model with D = sym L and W = skew L, strain ε += D Δt. In axisymmetry
 /// D_zz is the hoop rate ε̇_θθ = Σ_i S_ip v_i,r / r_p and the volume
-/// V = det(F) F_θθ V⁰ with F_θθ = r / R (the point's radius now over its
-/// first, times 1 + ε̇_θθ Δt for the step). USF uses the nodal
+/// V = det(F) F_θθ V⁰ with F_θθ = r / R, the point's radius at the end of
+/// the step over its first (under USF, whose points have not moved yet,
+/// r^n (1 + ε̇_θθ Δt); under USL, which runs after G2P, r^{n+1}, which also
+/// divides the hoop rate). USF uses the nodal
 /// velocity at the start of the step, USL the updated one; both with the
 /// gradients at x^n. The scheme is fixed here, with the order of the sets,
 /// when the schedule is built.
@@ -91,6 +93,7 @@ impl StrainStep<'_> {
             ..
         } = points;
         let axisymmetric = self.geometry == Geometry::Axisymmetric;
+        let after = self.after_momentum;
         (
             deformation_gradient.par_iter_mut(),
             stress.par_iter_mut(),
@@ -111,10 +114,18 @@ impl StrainStep<'_> {
                 *f = (DMat2::IDENTITY + l * self.dt) * *f;
                 let mut d = rate_of_deformation(l);
                 if axisymmetric {
-                    // ε̇_θθ = v_r / r; F_θθ = r / R at the end of the step.
+                    // ε̇_θθ = v_r / r and F_θθ = r / R at the end of the
+                    // step. Under USF the points are still at x^n, so the
+                    // step's stretch 1 + ε̇_θθ Δt is added; under USL G2P
+                    // has moved them to x^{n+1} already.
                     let r = hoop_radius(*x, *half);
                     d.zz = self.radial_velocity(stencil) / r;
-                    let hoop_stretch = r / hoop_radius(*x0, *half) * (1.0 + d.zz * self.dt);
+                    let stretch = r / hoop_radius(*x0, *half);
+                    let hoop_stretch = if after {
+                        stretch
+                    } else {
+                        stretch * (1.0 + d.zz * self.dt)
+                    };
                     *v = f.determinant() * hoop_stretch * v0;
                 } else {
                     *v = f.determinant() * v0;

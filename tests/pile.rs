@@ -73,8 +73,14 @@ fn reduced_axisymmetric_pile_meets_more_resistance_than_the_plane_one() {
     );
     // Measured 1.69 times here and 1.43 times over z/R ≥ 6 at full size;
     // a fifth more is asked, well clear of both a plane result (1.0) and
-    // of the noise between runs of nearby settings (a few percent).
-    assert!(axisymmetric > 1.2 * plane, "{axisymmetric} against {plane}");
+    // of the noise between runs of nearby settings (a few percent), and
+    // at most 2.5 times: an engine that ran the plane model and only read
+    // the force as axisymmetric (2 f_c / R² against f_c / R) would give 5.
+    let ratio = axisymmetric / plane;
+    assert!(
+        (1.2..2.5).contains(&ratio),
+        "{axisymmetric} against {plane}"
+    );
 }
 
 #[test]

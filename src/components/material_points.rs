@@ -14,9 +14,9 @@ pub struct NewPoint {
     pub position: DVec2,
     /// Velocity (m/s).
     pub velocity: DVec2,
-    /// Volume (m³ per metre of thickness).
+    /// Volume (m³ per metre of thickness; per radian in axisymmetry).
     pub volume: Real,
-    /// Mass (kg per metre of thickness).
+    /// Mass (kg per metre of thickness; per radian in axisymmetry).
     pub mass: Real,
     /// Half-size of the point's GIMP domain along x and y (m).
     pub half_size: DVec2,
@@ -84,7 +84,7 @@ pub struct MaterialPoints {
     pub mass: Vec<Real>,
     /// Initial volume V_p⁰.
     pub initial_volume: Vec<Real>,
-    /// Current volume V_p = det(F) V_p⁰.
+    /// Current volume V_p = det(F) V_p⁰ (in axisymmetry det(F) F_θθ V_p⁰).
     pub volume: Vec<Real>,
     /// In-plane deformation gradient F (F_zz = 1 in plane strain).
     pub deformation_gradient: Vec<DMat2>,

@@ -144,8 +144,11 @@ pub struct PointContact {
     pub from: DVec2,
     /// Energy stored in the contact's springs (J/m): the normal spring's
     /// (½ k_n δ², or k_n ∫A for the overlap-area measure) plus the
-    /// tangential spring's |f_t|² / (2 k_t).
+    /// tangential spring's.
     pub potential: Real,
+    /// Energy stored in the tangential spring, |f_t|² / (2 k_t) (J/m),
+    /// with the k_t the force was found with.
+    pub tangential_potential: Real,
 }
 
 impl PointContact {

@@ -244,10 +244,14 @@ impl RunOutput {
             self.folder
                 .write_file("stages.csv", |path| csv::write_stages(path, stages))?;
         }
+        let per = world
+            .resource::<crate::resources::Settings>()
+            .geometry
+            .per();
         for (curve, start) in &self.curves {
-            write_curve(&mut self.folder, curve, *start, blocks)?;
+            write_curve(&mut self.folder, curve, *start, blocks, per)?;
         }
-        self.plot_energy(energy)?;
+        self.plot_energy(energy, per)?;
         self.plot_probes(probes)?;
         self.plot_snapshot(sim.name(), world.resource::<Grid>())
     }
@@ -290,7 +294,7 @@ impl RunOutput {
         Ok(())
     }
 
-    fn plot_energy(&mut self, energy: &EnergyLog) -> std::io::Result<()> {
+    fn plot_energy(&mut self, energy: &EnergyLog, per: &str) -> std::io::Result<()> {
         let pick = |f: fn(&crate::resources::EnergySample) -> Real| -> Vec<(Real, Real)> {
             energy.samples.iter().map(|s| (s.time, f(s))).collect()
         };
@@ -306,7 +310,7 @@ impl RunOutput {
                 path,
                 "Energy",
                 "time (s)",
-                "energy (J/m)",
+                &format!("energy (J/{per})"),
                 &[
                     Series {
                         name: "kinetic",
@@ -445,6 +449,7 @@ fn write_curve(
     curve: &CurveSpec,
     start: DVec2,
     log: &BlockLog,
+    per: &str,
 ) -> std::io::Result<()> {
     let Some(block) = log.names.iter().position(|n| *n == curve.block) else {
         return Ok(());
@@ -488,7 +493,11 @@ fn write_curve(
                 .displacement_label
                 .as_deref()
                 .unwrap_or("displacement (m)"),
-            curve.force_label.as_deref().unwrap_or("force (N/m)"),
+            curve
+                .force_label
+                .clone()
+                .unwrap_or_else(|| format!("force (N/{per})"))
+                .as_str(),
             &[Series {
                 name: "",
                 points: &points,
@@ -591,7 +600,7 @@ mod tests {
             force_label: None,
             displacement_label: None,
         };
-        write_curve(&mut folder, &curve, DVec2::new(0.5, 0.4), &log).unwrap();
+        write_curve(&mut folder, &curve, DVec2::new(0.5, 0.4), &log, "m").unwrap();
         let text = std::fs::read_to_string(dir.join("qc.csv")).unwrap();
         let displacements: Vec<Real> = text
             .lines()

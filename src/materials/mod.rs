@@ -28,7 +28,9 @@ pub struct PointStep {
     pub d: SymTensor,
     /// In-plane spin W_xy = ½ (L_xy − L_yx) (1/s).
     pub w: Real,
-    /// Deformation gradient at the end of the step, F^{n+1} (in-plane; F_zz = 1).
+    /// In-plane deformation gradient at the end of the step, F^{n+1} (the
+    /// models that read it, NeoHookean and the fluid, take F_zz = 1: plane
+    /// strain only).
     pub f: DMat2,
     /// Step length Δt (s).
     pub dt: Real,
@@ -47,7 +49,8 @@ impl PointStep {
     }
 }
 
-/// A stress update rule for one material point (plane strain, tension positive).
+/// A stress update rule for one material point (tension positive; σ_zz is
+/// the out-of-plane stress in plane strain, the hoop stress in axisymmetry).
 pub trait ConstitutiveModel: Send + Sync {
     /// Advances `stress` over one step (objective: rate-form models rotate
     /// with the spin, hyperelastic ones compute σ from F).

@@ -5,6 +5,10 @@
 //! deviator, τ = √J₂ = √(s : s / 2). Shear yield (eq. 15a) F = τ + η σ_m − ξ c,
 //! potential (eq. 15b) G = τ + η̄ σ_m; tension cut-off (eq. 17) F_t = σ_m − σ_t,
 //! G_t = σ_m. η, ξ, η̄ follow eq. 16 (the plane-strain match to Mohr–Coulomb).
+//! Under `settings.geometry: Axisymmetric` the same match holds, so in
+//! triaxial compression the cone is weaker than Mohr–Coulomb (at φ = 30°,
+//! q/p = 0.83 at failure against Mohr–Coulomb's 1.2); use `MohrCoulomb`
+//! where the axisymmetric strength matters.
 
 use super::{ElasticPlastic, LinearElastic};
 use crate::math::{Real, SymTensor};

@@ -69,6 +69,15 @@ pub enum Geometry {
 }
 
 impl Geometry {
+    /// What extensive quantities are counted per: "m" (of thickness) or
+    /// "rad" (of the revolution), for units in labels.
+    pub fn per(self) -> &'static str {
+        match self {
+            Self::PlaneStrain => "m",
+            Self::Axisymmetric => "rad",
+        }
+    }
+
     /// The extent out of the plane, per unit the outputs are counted in, of
     /// material at `at`: 1 m in plane strain, the radius r (m per radian)
     /// in axisymmetry. Volumes, masses, loads and contact stiffnesses given

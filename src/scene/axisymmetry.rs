@@ -2,9 +2,12 @@
 //! keep: the plane is a meridian, x = r ≥ 0 from the axis at the grid's
 //! left edge, and everything is a body of revolution about it.
 
-use super::{MotionSpec, Scene};
+use super::{MotionSpec, Scene, Side};
+use crate::components::Pose;
 use crate::materials::MaterialModel;
+use crate::math::Real;
 use crate::resources::{EdgeCondition, Geometry};
+use crate::shape_functions::ShapeFunction;
 
 /// The first rule of axisymmetry `scene` breaks, as the anchors of the
 /// entry at fault (for the error's line) and the message; `None` for a
@@ -30,6 +33,12 @@ pub(super) fn axisymmetry_error(scene: &Scene) -> Option<(Vec<String>, String)> 
         return at(
             &["grid", "edges", "left"],
             "grid.edges.left must be Slip (or Fixed) under settings.geometry: Axisymmetric: the left edge is the axis, where the radial velocity is zero".into(),
+        );
+    }
+    if scene.settings.shape_function == ShapeFunction::QuadraticBSpline {
+        return at(
+            &["settings", "shape_function"],
+            "settings.shape_function: QuadraticBSpline needs a cell between a body and the grid's edge, and under settings.geometry: Axisymmetric that edge is the axis (a solid body of revolution could not reach it); use UGimp or Linear".into(),
         );
     }
     if scene.gravity.x != 0.0 {
@@ -73,6 +82,23 @@ pub(super) fn axisymmetry_error(scene: &Scene) -> Option<(Vec<String>, String)> 
         );
     }
     for block in &scene.blocks {
+        // A body of revolution's meridian lies on one side of its axis.
+        let reach = block.shape.build().ok().map(|shape| {
+            let pose = Pose {
+                origin: block.position,
+                angle: block.angle.to_radians(),
+            };
+            shape.compute_aabb(&pose.to_parry()).mins.x
+        });
+        if let Some(min_x) = reach.filter(|&x| x < -1e-9 * (1.0 + block.position.length())) {
+            return at(
+                &["blocks", &quoted(&block.name), "position"],
+                format!(
+                    "block '{}' reaches x = {min_x} across the axis under settings.geometry: Axisymmetric: a body of revolution's outline lies at x ≥ 0",
+                    block.name
+                ),
+            );
+        }
         let along_axis =
             |v: &crate::components::RigidVelocity| v.linear.x == 0.0 && v.angular == 0.0;
         let message = match &block.motion {
@@ -116,6 +142,23 @@ pub(super) fn axisymmetry_error(scene: &Scene) -> Option<(Vec<String>, String)> 
                 format!(
                     "stage '{}': block '{}' must move along the axis (linear.x = 0, angular = 0) under settings.geometry: Axisymmetric",
                     stage.name, change.block
+                ),
+            );
+        }
+        if let Some(traction) = stage.tractions.iter().find(|t| {
+            t.side == Side::Left
+                && scene.bodies.iter().any(|b| {
+                    b.name == t.body && {
+                        let spacing = scene.grid.cell_size / b.points_per_cell.max(1) as Real;
+                        b.shape.extent(spacing).0.x <= 1e-9 * scene.grid.cell_size
+                    }
+                })
+        }) {
+            return at(
+                &["stages", &name, "tractions"],
+                format!(
+                    "stage '{}': body '{}' reaches the axis, where its Left side has no area under settings.geometry: Axisymmetric, so the traction would load nothing",
+                    stage.name, traction.body
                 ),
             );
         }

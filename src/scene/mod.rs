@@ -3,7 +3,9 @@
 //!
 //! Every struct denies unknown fields; every optional field documents its
 //! default and why. Units are SI; the model is plane strain with unit
-//! thickness, so masses, forces and energies are per metre.
+//! thickness, so masses, forces and energies are per metre, or with
+//! `settings.geometry: Axisymmetric` a body of revolution, counted per
+//! radian.
 
 mod axisymmetry;
 mod contact_stability;

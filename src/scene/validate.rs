@@ -106,6 +106,10 @@ impl Scene {
         self.settings
             .check()
             .map_err(|e| invalid(&["settings"], format!("settings: {e}")))?;
+        if let Some((anchors, message)) = axisymmetry_error(self) {
+            let anchors: Vec<&str> = anchors.iter().map(String::as_str).collect();
+            return Err(invalid(&anchors, message));
+        }
         if self.settings.xpic_order.is_some() && !self.shared_layers().is_empty() {
             return Err(invalid(
                 &["settings", "xpic_order"],
@@ -332,10 +336,6 @@ impl Scene {
             }
         }
 
-        if let Some((anchors, message)) = axisymmetry_error(self) {
-            let anchors: Vec<&str> = anchors.iter().map(String::as_str).collect();
-            return Err(invalid(&anchors, message));
-        }
         if let Some(r) = contact_radius_error(self) {
             return Err(invalid(&["bodies", &quoted(&r.0), "contact_radius"], r.1));
         }
