@@ -184,8 +184,12 @@ fn check(path: &Path) -> Result<(), String> {
         eprintln!("warning: {w}");
     }
     let clock = sim.clock();
+    let geometry = match scene.settings.geometry {
+        mpdem::resources::Geometry::PlaneStrain => "plane strain",
+        mpdem::resources::Geometry::Axisymmetric => "axisymmetric, per radian",
+    };
     println!(
-        "{}: ok (bodies: {}, steps: {} of {:e} s)",
+        "{}: ok ({geometry}; bodies: {}, steps: {} of {:e} s)",
         path.display(),
         scene.bodies.len(),
         clock.total_steps(),

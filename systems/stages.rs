@@ -7,7 +7,8 @@ use crate::components::{
 };
 use crate::math::{DVec2, Real};
 use crate::resources::{
-    AppliedLoad, Clock, Gravity, Grid, Settings, StageEndReason, StageLog, StagePlan, StageRecord,
+    AppliedLoad, Clock, Geometry, Gravity, Grid, Settings, StageEndReason, StageLog, StagePlan,
+    StageRecord,
 };
 use crate::scene::{Side, StageEnd, spawn_block};
 use bevy_ecs::prelude::*;
@@ -249,6 +250,19 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
             .into_iter()
             .map(|(p, width)| (p, traction.traction * width))
             .collect();
+        // In axisymmetry a load acts on the ring at its edge's radius: a
+        // side whose every loaded edge lies on the axis has no area.
+        let geometry = world.resource::<Settings>().geometry;
+        let on_axis = forces.iter().all(|&(p, _)| {
+            let p = p as usize;
+            geometry.thickness(points.position[p] - points.half_size[p]) <= 1e-12
+        });
+        if geometry == Geometry::Axisymmetric && traction.side == Side::Left && on_axis {
+            warnings.push(format!(
+                "stage '{}': the Left side of body '{}' lies on the axis, where it has no area: its traction loads nothing",
+                spec.name, traction.body
+            ));
+        }
         plan.progress.loads.push(AppliedLoad {
             body,
             side: traction.side,

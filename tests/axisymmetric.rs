@@ -255,7 +255,7 @@ fn what_a_body_of_revolution_cannot_have_is_refused_with_its_line() {
         |entry: &str| format!(r#"stages: [(name: "s", end: Duration(0.1), {entry})], blocks: [("#);
     // (text, its replacement, the refusal's words, whether plane strain
     // takes the edited scene)
-    let cases: [(String, String, &str, bool); 13] = [
+    let cases: [(String, String, &str, bool); 12] = [
         (
             "origin: (0.0, 0.0)".into(),
             "origin: (-0.1, 0.0)".into(),
@@ -328,12 +328,6 @@ fn what_a_body_of_revolution_cannot_have_is_refused_with_its_line() {
             "cannot be made Free",
             true,
         ),
-        (
-            "blocks: [(".into(),
-            stage(r#"tractions: [(body: "column", side: Left, traction: (1e3, 0.0))]"#),
-            "its Left side has no area",
-            true,
-        ),
     ];
     for (from, to, expected, _) in &cases {
         assert!(COLUMN_ON_FLOOR.contains(from.as_str()), "{from}");
@@ -352,6 +346,20 @@ fn what_a_body_of_revolution_cannot_have_is_refused_with_its_line() {
             "{to}: {message}"
         );
     }
+    // Edges left out (all Free): the refusal points at the grid.
+    let edgeless = COLUMN_ON_FLOOR.replacen(
+        "        edges: (left: Slip, right: Free, bottom: Fixed, top: Free),\n",
+        "",
+        1,
+    );
+    assert_ne!(edgeless, COLUMN_ON_FLOOR);
+    let message = Scene::parse(&edgeless, Path::new("column.ron"))
+        .expect_err("refused")
+        .to_string();
+    assert!(
+        message.contains("column.ron:3:") && message.contains("grid.edges.left must be Slip"),
+        "{message}"
+    );
     // The same scene in plane strain takes them (but for the B-spline,
     // which needs its cell of margin there too).
     for (from, to, _, plane) in &cases {
@@ -426,4 +434,34 @@ fn a_uniform_expansion_strains_evenly_up_to_the_axis() {
     );
     // Linear fields are reproduced up to rounding (1e-9 allows for it).
     assert!(worst < 1e-9, "{worst}");
+}
+
+#[test]
+fn a_left_traction_on_the_axis_is_warned_of_and_one_off_it_loads() {
+    // The column reaches the axis: its Left side has no area there.
+    let with_left = |shape: &str| {
+        let text = COLUMN_ON_FLOOR
+            .replacen("Rectangle(min: (0.0, 0.15), max: (0.5, 0.65))", shape, 1)
+            .replacen(
+                "blocks: [(",
+                r#"stages: [(name: "s", end: Duration(0.01), tractions: [(body: "column", side: Left, traction: (1e3, 0.0))])], blocks: [("#,
+                1,
+            );
+        let scene = Scene::parse(&text, Path::new("column.ron")).unwrap_or_else(|e| panic!("{e}"));
+        Simulation::from_scene(&scene)
+            .unwrap_or_else(|e| panic!("{e}"))
+            .warnings()
+            .iter()
+            .any(|w| w.contains("lies on the axis"))
+    };
+    assert!(with_left("Rectangle(min: (0.0, 0.15), max: (0.5, 0.65))"));
+    // Starting 0.01 m off the axis its points still fill the cells from
+    // the axis (a tester's case): warned too.
+    assert!(with_left("Rectangle(min: (0.01, 0.15), max: (0.5, 0.65))"));
+    // A ring off the axis is loaded, as is a triangle with one corner on
+    // it (a tester's case, which a rule on the outline refused).
+    assert!(!with_left("Rectangle(min: (0.2, 0.15), max: (0.5, 0.65))"));
+    assert!(!with_left(
+        "Polygon(vertices: [(0.0, 0.4), (0.5, 0.15), (0.5, 0.65)])"
+    ));
 }

@@ -347,7 +347,7 @@ impl RunOutput {
             (
                 "velocity",
                 "velocity (m/s)",
-                [
+                &[
                     ("vx", |s| s.velocity.x),
                     ("vy", |s| s.velocity.y),
                     ("|v|", |s| s.velocity.length()),
@@ -356,7 +356,7 @@ impl RunOutput {
             (
                 "displacement",
                 "displacement (m)",
-                [
+                &[
                     ("ux", |s| s.displacement.x),
                     ("uy", |s| s.displacement.y),
                     ("|u|", |s| s.displacement.length()),
@@ -365,15 +365,17 @@ impl RunOutput {
             (
                 "stress",
                 "stress (Pa)",
-                [
+                // szz: out of the plane, or the hoop stress in axisymmetry.
+                &[
                     ("sxx", |s| s.stress.xx),
                     ("syy", |s| s.stress.yy),
                     ("sxy", |s| s.stress.xy),
+                    ("szz", |s| s.stress.zz),
                 ],
             ),
         ];
         for (k, probe) in probes.probes.iter().enumerate() {
-            for (group, unit, picks) in &groups {
+            for &(group, unit, picks) in &groups {
                 let curves: Vec<Vec<(Real, Real)>> = picks
                     .iter()
                     .map(|(_, f)| probes.series(k).map(|s| (s.time, f(s))).collect())
@@ -555,8 +557,8 @@ impl FrameBuffers {
 /// A probe quantity: its name in the legend and how to read it from a sample.
 type ProbeCurve = (&'static str, fn(&crate::resources::ProbeSample) -> Real);
 
-/// One PNG per probe: file suffix, axis label and three curves.
-type ProbePlot = (&'static str, &'static str, [ProbeCurve; 3]);
+/// One PNG per probe: file suffix, axis label and its curves.
+type ProbePlot = (&'static str, &'static str, &'static [ProbeCurve]);
 
 #[cfg(test)]
 mod tests {

@@ -2,10 +2,9 @@
 //! keep: the plane is a meridian, x = r ≥ 0 from the axis at the grid's
 //! left edge, and everything is a body of revolution about it.
 
-use super::{MotionSpec, Scene, Side};
+use super::{MotionSpec, Scene};
 use crate::components::Pose;
 use crate::materials::MaterialModel;
-use crate::math::Real;
 use crate::resources::{EdgeCondition, Geometry};
 use crate::shape_functions::ShapeFunction;
 
@@ -142,23 +141,6 @@ pub(super) fn axisymmetry_error(scene: &Scene) -> Option<(Vec<String>, String)> 
                 format!(
                     "stage '{}': block '{}' must move along the axis (linear.x = 0, angular = 0) under settings.geometry: Axisymmetric",
                     stage.name, change.block
-                ),
-            );
-        }
-        if let Some(traction) = stage.tractions.iter().find(|t| {
-            t.side == Side::Left
-                && scene.bodies.iter().any(|b| {
-                    b.name == t.body && {
-                        let spacing = scene.grid.cell_size / b.points_per_cell.max(1) as Real;
-                        b.shape.extent(spacing).0.x <= 1e-9 * scene.grid.cell_size
-                    }
-                })
-        }) {
-            return at(
-                &["stages", &name, "tractions"],
-                format!(
-                    "stage '{}': body '{}' reaches the axis, where its Left side has no area under settings.geometry: Axisymmetric, so the traction would load nothing",
-                    stage.name, traction.body
                 ),
             );
         }

@@ -23,8 +23,9 @@ impl SourceLocation {
     }
 
     /// The position of the last of `anchors`, each searched for after the
-    /// previous one (e.g. `["bodies", "\"column\"", "material"]`), or the
-    /// file alone when one is not found. Comments are skipped; a quoted
+    /// previous one (e.g. `["bodies", "\"column\"", "material"]`); when one
+    /// is not found (a field left out), the last found before it, or the
+    /// file alone when the first is not found. Comments are skipped; a quoted
     /// anchor matches a string literal, any other anchor a field name (an
     /// identifier followed by `:`). Columns count characters, as ron's do.
     pub fn find(source: &str, path: &Path, anchors: &[&str]) -> Self {
@@ -37,12 +38,9 @@ impl SourceLocation {
                     found = Some(at);
                     offset = at + anchor.len();
                 }
-                None => {
-                    return Self {
-                        path: Some(path.to_path_buf()),
-                        line_col: None,
-                    };
-                }
+                // A field left out (its default taken): the entry that
+                // would hold it, if that was found.
+                None => break,
             }
         }
         let line_col = found.map(|at| {
