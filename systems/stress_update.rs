@@ -4,7 +4,7 @@ use crate::components::{
     GridLayer, GridNode, Material, MaterialPoints, TransferScratch, hoop_radius,
 };
 use crate::materials::{ConstitutiveModel, MaterialModel, PointStep};
-use crate::math::{DMat2, Real, outer, rate_of_deformation, spin};
+use crate::math::{DMat2, DVec2, Real, outer, rate_of_deformation, spin};
 use crate::resources::{Clock, Geometry, Settings, UpdateScheme};
 use crate::shape_functions::Stencil;
 use crate::transfer::MIN_POINTS_PER_TASK;
@@ -144,39 +144,34 @@ impl StrainStep<'_> {
     /// The radial velocity at the point, Σ_i S_ip v_i,r (axisymmetry).
     #[inline(always)]
     fn radial_velocity(&self, stencil: &Stencil) -> Real {
-        let after = self.after_momentum;
         stencil.gather(
             self.nodes,
             self.origin,
             self.row_len,
             0.0,
-            |u, node, w, _| {
-                let v = if after {
-                    node.velocity_new
-                } else {
-                    node.velocity
-                };
-                u + w * v.x
-            },
+            |u, node, w, _| u + w * self.nodal_velocity(node).x,
         )
+    }
+
+    /// The nodal velocity the strain rate follows: v^n under USF, v^{n+1}
+    /// under USL.
+    #[inline(always)]
+    fn nodal_velocity(&self, node: &GridNode) -> DVec2 {
+        if self.after_momentum {
+            node.velocity_new
+        } else {
+            node.velocity
+        }
     }
 
     #[inline(always)]
     fn velocity_gradient(&self, stencil: &Stencil) -> DMat2 {
-        let after = self.after_momentum;
         stencil.gather(
             self.nodes,
             self.origin,
             self.row_len,
             DMat2::ZERO,
-            |l, node, _, g| {
-                let v = if after {
-                    node.velocity_new
-                } else {
-                    node.velocity
-                };
-                l + outer(v, g)
-            },
+            |l, node, _, g| l + outer(self.nodal_velocity(node), g),
         )
     }
 }
