@@ -5,7 +5,7 @@ use crate::components::{
     DampedEnergy, GridLayer, MaterialPoints, RemapScratch, StepTravel, TransferScratch,
 };
 use crate::math::{DMat2, DVec2, Real, local_damping, outer};
-use crate::resources::{Clock, Geometry, Grid, PositionUpdate, Settings};
+use crate::resources::{Clock, Grid, PositionUpdate, Settings};
 use crate::shape_functions::Stencil;
 use crate::transfer::{MIN_POINTS_PER_TASK, Scatter, ScatterOrder};
 use bevy_ecs::prelude::*;
@@ -59,7 +59,6 @@ pub fn grid_to_particle(
     let forward = settings.position_update == PositionUpdate::Forward;
     let remapped = settings.position_update == PositionUpdate::Remapped;
     let affine = settings.affine_transfer;
-    let axisymmetric = settings.geometry == Geometry::Axisymmetric;
     let order = settings.xpic_order.unwrap_or(0);
     // The nodal velocity that moves the points, as weights of v^n and
     // v^{n+1} (none for the remapped one, taken below): its gradient is the
@@ -83,16 +82,11 @@ pub fn grid_to_particle(
             damped: taken,
             undamped,
             remap,
-            planar_weight,
-            planar_mass,
             ..
         } = &mut *scratch;
-        // The weights of the maps back to the nodes, as P2G's projection.
-        let planar = axisymmetric.then_some((&planar_weight[..], &planar_mass[..]));
         if order >= 1 {
             let transfer = (&stencils[..], &*scatter_order);
-            let weights = planar.map_or((&points.mass[..], None), |(w, m)| (w, Some(m)));
-            xpic_velocities(order, weights, layer, transfer, remap);
+            xpic_velocities(order, &points.mass, layer, transfer, remap);
         }
         let window = layer.window();
         let (origin, row_len) = (window.start.map(|k| k as u32), window.width());
@@ -194,10 +188,7 @@ pub fn grid_to_particle(
                 gradient: affine_gradient,
                 cell: grid.cell_size,
             });
-            let weights = planar.map_or((&mass[..], None), |(w, m)| (w, Some(m)));
-            map_to_nodes(
-                weights, velocity, affine, layer, transfer, momentum, current,
-            );
+            map_to_nodes(mass, velocity, affine, layer, transfer, momentum, current);
             let remapped_velocity = &*current;
             travel.0 = (
                 position.par_iter_mut(),
@@ -257,12 +248,10 @@ struct AffineMap<'a> {
 /// Maps point velocities back to the layer's active nodes:
 /// u_i = Σ_p S_ip m_p V_p / m_i, or with `affine`
 /// Σ_p S_ip m_p (V_p + C_p (x_i − x̄_p)) / m_i as P2G maps them (zero below
-/// the layer's mass cutoff), constrained like the nodal velocities. In
-/// axisymmetry P2G's planar weights stand for the masses: `weights` are
-/// then m_p / r_p and `planar` the nodes' Σ S_ip m_p / r_p. Nodes outside
-/// the active ones keep earlier values: no stencil reaches them.
+/// the layer's mass cutoff), constrained like the nodal velocities. Nodes
+/// outside the active ones keep earlier values: no stencil reaches them.
 fn map_to_nodes(
-    (mass, planar): (&[Real], Option<&[Real]>),
+    mass: &[Real],
     velocity: &[DVec2],
     affine: Option<AffineMap>,
     layer: &GridLayer,
@@ -295,12 +284,9 @@ fn map_to_nodes(
     momentum.add_into(into, window, |u, mv| *u += mv);
     let cutoff = layer.mass_cutoff;
     active.rows_mut(window, into).for_each(|(j, row)| {
-        let nodes = active.row(window, nodes, j);
-        let planar = planar.map(|p| active.row(window, p, j));
-        for (k, (u, node)) in row.iter_mut().zip(nodes).enumerate() {
-            let weight = planar.map_or(node.mass, |p| p[k]);
+        for (u, node) in row.iter_mut().zip(active.row(window, nodes, j)) {
             *u = if node.mass > cutoff {
-                *u / weight
+                *u / node.mass
             } else {
                 DVec2::ZERO
             };
@@ -314,7 +300,7 @@ fn map_to_nodes(
 /// reaches them.
 fn xpic_velocities(
     order: u32,
-    mass: (&[Real], Option<&[Real]>),
+    mass: &[Real],
     layer: &GridLayer,
     (stencils, scatter_order): (&[Stencil], &ScatterOrder),
     xpic: &mut RemapScratch,

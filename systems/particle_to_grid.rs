@@ -8,15 +8,11 @@ use crate::components::{
 };
 use crate::contact::ForceApplication;
 use crate::math::DVec2;
-use crate::math::Real;
 use crate::resources::{
-    Clock, ContactSettings, Diagnostics, Geometry, Gravity, Grid, NumericalFailure, Settings,
-    SharedLayers,
+    Clock, ContactSettings, Diagnostics, Gravity, Grid, NumericalFailure, Settings, SharedLayers,
 };
 use crate::shape_functions::Stencil;
-use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
-use rayon::prelude::*;
 
 /// The resources P2G reads.
 type StepInputs<'w> = (
@@ -45,21 +41,25 @@ pub fn particle_to_grid(
     (grid, settings, gravity, contact, clock): StepInputs,
     mut diagnostics: ResMut<Diagnostics>,
     mut shared: ResMut<SharedLayers>,
-    mut bodies: P2gBodies,
+    mut bodies: Query<(
+        &BodyName,
+        Option<&BodyAcceleration>,
+        &MaterialPoints,
+        &mut GridLayer,
+        &mut TransferScratch,
+    )>,
 ) {
     let nodes = grid.nodes();
     let stencil_grid = grid.stencil_grid();
     let cell = grid.cell_size;
     let (kernel, g) = (settings.shape_function, gravity.0);
     let body_force = contact.force_application == ForceApplication::BodyForce;
-    let axisymmetric = settings.geometry == Geometry::Axisymmetric;
     for (name, own, points, mut layer, mut scratch) in &mut bodies {
         let g = g + own.map_or(DVec2::ZERO, |a| a.at(clock.time));
         let TransferScratch {
             stencils,
             order,
             mass_momentum,
-            planar_weight,
             ..
         } = &mut *scratch;
         stencils.resize(points.len(), Stencil::default());
@@ -80,19 +80,6 @@ pub fn particle_to_grid(
         }
         let window = layer.window();
         order.sort_by_row(stencils, window);
-        // The weights of the velocity projection: the masses, or in
-        // axisymmetry the masses per unit radius (see below).
-        let weights: &[Real] = if axisymmetric {
-            planar_weight.resize(points.len(), 0.0);
-            planar_weight
-                .par_iter_mut()
-                .enumerate()
-                .with_min_len(MIN_POINTS_PER_TASK)
-                .for_each(|(p, w)| *w = points.mass[p] / points.hoop_radius(p));
-            planar_weight
-        } else {
-            &points.mass
-        };
         let force_on = |p: usize| {
             let contact = if body_force {
                 points.contact_force[p]
@@ -109,7 +96,7 @@ pub fn particle_to_grid(
                 |p| {
                     let mean = stencils[p].mean_place();
                     let velocity = (points.velocity[p], points.affine_gradient[p], mean);
-                    (weights[p], velocity, force_on(p))
+                    (points.mass[p], velocity, force_on(p))
                 },
                 |&(m, (v, c, mean), f), w, _, node| {
                     let offset = Stencil::offset_from_mean(mean, node, cell);
@@ -124,7 +111,7 @@ pub fn particle_to_grid(
             mass_momentum.scatter(
                 stencils,
                 order,
-                |p| (weights[p], points.velocity[p], force_on(p)),
+                |p| (points.mass[p], points.velocity[p], force_on(p)),
                 |&(m, v, f), w, _, _| MassMomentumForce {
                     mass: w * m,
                     momentum: (w * m) * v,
@@ -155,9 +142,6 @@ pub fn particle_to_grid(
             n.external_force = sum.external_force;
         },
     );
-    if axisymmetric {
-        project_per_radian(&mut shared, &mut bodies);
-    }
     for (.., mut layer, _) in &mut bodies {
         let cutoff = layer.mass_cutoff;
         layer.for_each_active(|n| {
@@ -168,74 +152,5 @@ pub fn particle_to_grid(
             };
         });
         layer.apply_constraints(|n| &mut n.velocity);
-    }
-}
-
-/// The bodies P2G reads and writes.
-type P2gBodies<'w, 's> = Query<
-    'w,
-    's,
-    (
-        &'static BodyName,
-        Option<&'static BodyAcceleration>,
-        &'static MaterialPoints,
-        &'static mut GridLayer,
-        &'static mut TransferScratch,
-    ),
->;
-
-/// Axisymmetry: the layers hold Σ S_ip m_p / r_p as their mass and
-/// Σ S_ip (m_p / r_p) V_p as their momentum (scattered with the planar
-/// weights); this turns them into the mass per radian m_i = Σ S_ip m_p,
-/// which the momentum balance of per-radian forces takes, and the momentum
-/// m_i v_i of the velocity v_i projected with the planar weights, which
-/// is kept in `TransferScratch::planar_mass` for G2P's maps.
-///
-/// Why not project with the masses per radian: they grow with r, so the
-/// projection leans outwards, most near the axis. Uniform expansion
-/// v_r = a r with 2 × 2 points per cell gives the first node 1.19 a h and
-/// the second 1.047 × 2 a h (a tester found the first cell's stress rate
-/// 19% high); the planar weights give a h and 2 a h, as plane strain does.
-/// The step's change of momentum, S_ip m_p Δv, is still the forces' impulse.
-fn project_per_radian(shared: &mut SharedLayers, bodies: &mut P2gBodies) {
-    for (_, _, points, mut layer, mut scratch) in bodies.iter_mut() {
-        let TransferScratch {
-            stencils,
-            order,
-            planar_mass,
-            mass_per_radian,
-            ..
-        } = &mut *scratch;
-        let (active, window) = (layer.active(), layer.window());
-        planar_mass.resize(layer.nodes().len(), 0.0);
-        active
-            .rows_mut(window, planar_mass)
-            .zip(active.rows_mut(window, layer.nodes_mut()))
-            .for_each(|((_, planar), (_, nodes))| {
-                for (planar, n) in planar.iter_mut().zip(nodes) {
-                    *planar = n.mass;
-                    // The velocity until the mass per radian is in.
-                    n.velocity = if n.mass > 0.0 {
-                        n.momentum / n.mass
-                    } else {
-                        DVec2::ZERO
-                    };
-                    n.mass = 0.0;
-                }
-            });
-        mass_per_radian.scatter(stencils, order, |p| points.mass[p], |m, w, _, _| w * m);
-        mass_per_radian.add_into(layer.nodes_mut(), window, |n, m| n.mass += m);
-    }
-    shared.share(
-        |entity, f| {
-            if let Ok((.., mut layer, _)) = bodies.get_mut(entity) {
-                f(&mut layer);
-            }
-        },
-        |sum, n| sum.mass += n.mass,
-        |n, sum| n.mass = sum.mass,
-    );
-    for (.., mut layer, _) in bodies.iter_mut() {
-        layer.for_each_active(|n| n.momentum = n.mass * n.velocity);
     }
 }

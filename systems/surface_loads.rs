@@ -42,7 +42,8 @@ pub fn apply_surface_loads(
         for &(p, force) in &load.forces {
             let p = p as usize;
             let edge = points.position[p] + outward * points.half_size[p];
-            let force = force * settings.geometry.thickness(edge);
+            // A domain pushed past the axis loads nothing there.
+            let force = force * settings.geometry.thickness(edge).max(0.0);
             add_with_hat_functions(&grid, &mut layer, edge, force);
         }
     }

@@ -51,16 +51,6 @@ pub struct TransferScratch {
     /// Work space of G2P's maps from the points back to the nodes, sized
     /// on first use.
     pub remap: RemapScratch,
-    /// In axisymmetry, the weights with which the point velocities are
-    /// projected to the nodes: each point's mass per unit radius m_p / r_p
-    /// at x^n (empty in plane strain).
-    pub planar_weight: Vec<Real>,
-    /// In axisymmetry, each stored node's Σ_p S_ip m_p / r_p, the
-    /// denominator of the velocity projections (empty in plane strain).
-    pub planar_mass: Vec<Real>,
-    /// In axisymmetry, the patches of the scatter of the nodes' mass per
-    /// radian Σ_p S_ip m_p, which the momentum balance takes.
-    pub mass_per_radian: Scatter<Real>,
 }
 
 /// Work space of one body's maps from the points back to its nodes in G2P:

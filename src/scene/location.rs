@@ -30,13 +30,19 @@ impl SourceLocation {
     /// identifier followed by `:`). Columns count characters, as ron's do.
     pub fn find(source: &str, path: &Path, anchors: &[&str]) -> Self {
         let text = without_comments(source);
-        let mut offset = 0;
+        let (mut from, mut scope) = (0, text.len());
         let mut found = None;
-        for anchor in anchors {
-            match find_anchor(&text, offset, anchor) {
+        for (k, anchor) in anchors.iter().enumerate() {
+            match find_anchor(&text[..scope], from, anchor) {
                 Some(at) => {
                     found = Some(at);
-                    offset = at + anchor.len();
+                    from = at + anchor.len();
+                    // The next anchor lies inside this one's value, or, for
+                    // a quoted name, in the entry it names; a repeated
+                    // anchor (the k-th `name` of a list) among its siblings.
+                    if anchors.get(k + 1) != Some(anchor) {
+                        scope = value_end(&text, from, anchor.starts_with('"')).min(scope);
+                    }
                 }
                 // A field left out (its default taken): the entry that
                 // would hold it, if that was found.
@@ -78,6 +84,32 @@ fn find_anchor(text: &str, from: usize, anchor: &str) -> Option<usize> {
         start = end;
     }
     None
+}
+
+/// Where the value that begins at `from` ends (byte offset): at the first
+/// `,` outside brackets and strings, or where the enclosing bracket closes;
+/// with `whole_entry` (after a quoted name) only the latter, so the scope
+/// is the rest of the entry the name is in.
+fn value_end(text: &str, from: usize, whole_entry: bool) -> usize {
+    let bytes = text.as_bytes();
+    let (mut depth, mut in_string, mut k) = (0usize, false, from);
+    while k < bytes.len() {
+        match (in_string, bytes[k]) {
+            (true, b'\\') => k += 1,
+            (_, b'"') => in_string = !in_string,
+            (false, b'(' | b'[' | b'{') => depth += 1,
+            (false, b')' | b']' | b'}') => {
+                if depth == 0 {
+                    return k;
+                }
+                depth -= 1;
+            }
+            (false, b',') if depth == 0 && !whole_entry => return k,
+            _ => {}
+        }
+        k += 1;
+    }
+    bytes.len()
 }
 
 /// `source` with every comment replaced by spaces (same byte offsets):
@@ -129,6 +161,23 @@ impl fmt::Display for SourceLocation {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn anchors_are_found_inside_their_parents_only() {
+        let text = "Scene(\n  grid: (cells: (2, 2)),\n  stages: [(name: \"s\", edges: (left: Free))],\n  bodies: [(name: \"a\", material: \"m\"), (name: \"b\")],\n)";
+        let path = Path::new("s.ron");
+        // grid.edges is left out: the grid, not the stage's edges.
+        let at = SourceLocation::find(text, path, &["grid", "edges", "left"]);
+        assert_eq!(at.line_col, Some((2, 3)));
+        // Body "b" has no material: its name, not body "a"'s material.
+        let at = SourceLocation::find(text, path, &["bodies", "\"b\"", "material"]);
+        assert_eq!(at.line_col, Some((4, 47)));
+        let at = SourceLocation::find(text, path, &["bodies", "\"a\"", "material"]);
+        assert_eq!(at.line_col, Some((4, 24)));
+        // The second `name` of a list, among siblings.
+        let at = SourceLocation::find(text, path, &["bodies", "name", "name"]);
+        assert_eq!(at.line_col, Some((4, 41)));
+    }
 
     #[test]
     fn anchors_skip_comments_and_match_whole_fields() {
