@@ -104,12 +104,8 @@ impl StrainStep<'_> {
         )
             .into_par_iter()
             .with_min_len(MIN_POINTS_PER_TASK)
-            .zip((
-                position.par_iter(),
-                initial_position.par_iter(),
-                half_size.par_iter(),
-            ))
-            .for_each(|((f, sigma, eps, v, v0, stencil), (x, x0, half))| {
+            .enumerate()
+            .for_each(|(p, (f, sigma, eps, v, v0, stencil))| {
                 let l = self.velocity_gradient(stencil);
                 *f = (DMat2::IDENTITY + l * self.dt) * *f;
                 let mut d = rate_of_deformation(l);
@@ -118,9 +114,9 @@ impl StrainStep<'_> {
                     // step. Under USF the points are still at x^n, so the
                     // step's stretch 1 + ε̇_θθ Δt is added; under USL G2P
                     // has moved them to x^{n+1} already.
-                    let r = hoop_radius(*x, *half);
+                    let r = hoop_radius(position[p], half_size[p]);
                     d.zz = self.radial_velocity(stencil) / r;
-                    let stretch = r / hoop_radius(*x0, *half);
+                    let stretch = r / hoop_radius(initial_position[p], half_size[p]);
                     let hoop_stretch = if after {
                         stretch
                     } else {
