@@ -105,6 +105,12 @@ fn every_scene_steps_without_allocating() {
     while driven.world().resource::<StagePlan>().progress.current < 2 {
         driven.step().unwrap_or_else(|e| panic!("{e}"));
     }
+    // The same as a body of revolution.
+    pile.settings.geometry = mpdem::resources::Geometry::Axisymmetric;
+    let mut revolved = Simulation::from_scene(&pile).unwrap_or_else(|e| panic!("{e}"));
+    while revolved.world().resource::<StagePlan>().progress.current < 2 {
+        revolved.step().unwrap_or_else(|e| panic!("{e}"));
+    }
     // A dynamic block falling in a stage that ends when the kinetic energy
     // (of bodies and dynamic blocks) has settled.
     let drop = common::settling_drop();
@@ -130,6 +136,7 @@ fn every_scene_steps_without_allocating() {
     measure("two_rings", &mut warmed_up(&rings, 2000), 200);
     // Mohr–Coulomb soil, a compound kinematic block, stage conditions.
     measure("pile_penetration", &mut driven, 200);
+    measure("pile_penetration, axisymmetric", &mut revolved, 200);
     // Drucker–Prager, a spreading body (after its first energy sample, at
     // step 100, which sizes the sampling's scratch).
     measure("column_collapse", &mut warmed_up(&column, 300), 200);
