@@ -253,11 +253,13 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
         // In axisymmetry a load acts on the ring at its edge's radius: a
         // side whose every loaded edge lies on the axis has no area.
         let geometry = world.resource::<Settings>().geometry;
-        let on_axis = forces.iter().all(|&(p, _)| {
-            let p = p as usize;
-            geometry.thickness(points.position[p] - points.half_size[p]) <= 1e-12
-        });
-        if geometry == Geometry::Axisymmetric && traction.side == Side::Left && on_axis {
+        let on_axis = || {
+            forces.iter().all(|&(p, _)| {
+                let p = p as usize;
+                geometry.thickness(points.position[p] - points.half_size[p]) <= 1e-12
+            })
+        };
+        if geometry == Geometry::Axisymmetric && traction.side == Side::Left && on_axis() {
             warnings.push(format!(
                 "stage '{}': the Left side of body '{}' lies on the axis, where it has no area: its traction loads nothing",
                 spec.name, traction.body

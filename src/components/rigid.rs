@@ -131,7 +131,8 @@ pub struct PointContact {
     pub body: Entity,
     /// The point's index in its body.
     pub point: u32,
-    /// Force on the point (N/m); the block receives the opposite.
+    /// Force on the point (N/m; per radian in axisymmetry); the block
+    /// receives the opposite.
     pub force: DVec2,
     /// Tangential spring force, carried to the next step.
     pub tangential: DVec2,
@@ -142,11 +143,13 @@ pub struct PointContact {
     pub at_on_block: DVec2,
     /// The point's position when the contact was found (m).
     pub from: DVec2,
-    /// Energy stored in the contact's springs (J/m): the normal spring's
+    /// Energy stored in the contact's springs (J/m; per radian in
+    /// axisymmetry): the normal spring's
     /// (½ k_n δ², or k_n ∫A for the overlap-area measure) plus the
     /// tangential spring's.
     pub potential: Real,
-    /// Energy stored in the tangential spring, |f_t|² / (2 k_t) (J/m),
+    /// Energy stored in the tangential spring, |f_t|² / (2 k_t) (J/m; per
+    /// radian in axisymmetry),
     /// with the k_t the force was found with.
     pub tangential_potential: Real,
 }

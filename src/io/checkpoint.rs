@@ -48,7 +48,7 @@ const MAGIC: &[u8; 8] = b"MPDEMCK\0";
 /// The layout of the stored state; a checkpoint of another layout is
 /// refused rather than misread. (9: surface tractions no longer held in
 /// the points' external forces; 10: the sampling interval kept; 11: the
-/// settings' geometry.)
+/// settings' geometry and the contacts' tangential spring energy.)
 const FORMAT: u32 = 11;
 
 /// Why a checkpoint could not be written or resumed.
