@@ -6,7 +6,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use mpdem::io::RunOutput;
 use mpdem::resources::{StageLog, StagePlan};
 use mpdem::scene::Scene;
-use mpdem::verify::{CASES, CaseReport, Context, RunEvent, Verdict};
+use mpdem::verify::{CASES, Case, CaseReport, Context, RunEvent, Verdict};
 use mpdem::{Simulation, bench, verify};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -486,9 +486,12 @@ fn run_bench(points: usize, warmup: u64, steps: u64) -> Result<(), String> {
 }
 
 fn list_cases() {
+    let width = |f: fn(&Case) -> &str| CASES.iter().map(|c| f(c).chars().count()).max();
+    let name = width(|c| c.name).unwrap_or(0);
+    let source = width(|c| c.source).unwrap_or(0);
     for case in CASES {
         println!(
-            "{:<18} {:<16} ~{:>4.1} min  {}",
+            "{:<name$} {:<source$} ~{:>4.1} min  {}",
             case.name, case.source, case.minutes, case.about
         );
     }

@@ -164,7 +164,7 @@ pub const CASES: &[Case] = &[
     },
     Case {
         name: "pile_penetration_axisymmetric",
-        source: "paper 4.3, as a body of revolution",
+        source: "paper 4.3, axisymmetric",
         about: "the same pile and sand axisymmetric, Susila and Hryciw's geometry: q_c = 2 f_c / R²",
         minutes: 4.5,
         run: pile::run_axisymmetric,
