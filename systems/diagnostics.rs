@@ -8,7 +8,7 @@ use crate::math::DVec2;
 use crate::resources::{
     BlockLog, BlockPartSample, BlockSample, BodyContacts, BodyPairLog, BodyPairSample, Clock,
     ContactWork, Diagnostics, EnergyLog, EnergySample, Gravity, MAX_CONTACT_BODIES,
-    NumericalFailure, PairTally, Probes,
+    NumericalFailure, PairTally, Probes, Settings,
 };
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -111,7 +111,7 @@ fn sample_due(clock: &Clock, probes: &Probes) -> bool {
 /// Records probes and energies at the steps [`sample_due`] picks, unless the step
 /// failed (a broken state is never recorded).
 ///
-/// Reads: `Clock`, `Diagnostics`, `Gravity`, `MaterialPoints`, `Material`,
+/// Reads: `Clock`, `Diagnostics`, `Gravity`, `Settings::geometry`, `MaterialPoints`, `Material`,
 /// `BodyIndex`, `BodyContacts`, `BlockContacts` (the contact springs'
 /// energy), `ContactWork`, `DampedEnergy`. Writes: `Probes`,
 /// `EnergyLog`.
@@ -119,7 +119,7 @@ fn sample_due(clock: &Clock, probes: &Probes) -> bool {
 pub fn record_probes_and_energy(
     clock: Res<Clock>,
     diagnostics: Res<Diagnostics>,
-    gravity: Res<Gravity>,
+    (gravity, settings): (Res<Gravity>, Res<Settings>),
     mut probes: ResMut<Probes>,
     mut energy: ResMut<EnergyLog>,
     body_contacts: Res<BodyContacts>,
@@ -141,7 +141,13 @@ pub fn record_probes_and_energy(
     probes.record(clock.time, |entity| bodies.get(entity).ok().map(|b| b.2));
     sort_into_scene_order(order, bodies.iter().map(|(e, i, ..)| (*i, e)));
     let ordered = || order.iter().filter_map(|(_, e)| bodies.get(*e).ok());
-    let mut sample = EnergySample::of(clock.time, ordered().map(|b| (b.2, b.3)), gravity.0, sums);
+    let mut sample = EnergySample::of(
+        clock.time,
+        ordered().map(|b| (b.2, b.3)),
+        gravity.0,
+        settings.geometry,
+        sums,
+    );
     sample.damped = ordered().map(|b| b.4.0).sum();
     sort_into_scene_order(block_order, blocks.iter().map(|(e, id, ..)| (id.index, e)));
     let (mut springs, mut tangential) = body_contacts.spring_energies();

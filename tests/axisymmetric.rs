@@ -260,7 +260,7 @@ fn what_a_body_of_revolution_cannot_have_is_refused_with_its_line() {
         |entry: &str| format!(r#"stages: [(name: "s", end: Duration(0.1), {entry})], blocks: [("#);
     // (text, its replacement, the refusal's words, whether plane strain
     // takes the edited scene)
-    let cases: [(String, String, &str, bool); 12] = [
+    let cases: [(String, String, &str, bool); 11] = [
         (
             "origin: (0.0, 0.0)".into(),
             "origin: (-0.1, 0.0)".into(),
@@ -283,12 +283,6 @@ fn what_a_body_of_revolution_cannot_have_is_refused_with_its_line() {
             "gravity: (0.0, -9.81)".into(),
             "gravity: (1.0, -9.81)".into(),
             "gravity must lie along the axis",
-            true,
-        ),
-        (
-            "LinearElastic((youngs_modulus: 1e7, poisson_ratio: 0.0))".into(),
-            "NeoHookean((youngs_modulus: 1e7, poisson_ratio: 0.0))".into(),
-            "NeoHookean and NewtonianFluid are not available",
             true,
         ),
         (
@@ -517,21 +511,23 @@ fn a_left_traction_on_the_axis_is_warned_of_and_one_off_it_loads() {
     );
 }
 
-#[test]
-fn a_breathing_cylinder_keeps_its_energy() {
-    // The uniform expansion left free (FLIP, no damping): its outer
-    // surface unloads it and the cylinder breathes, the kinetic and the
-    // strain energy trading places (period about 14 ms). Nothing takes or
-    // gives energy, so their sum must stay, up to the scheme's error.
-    let scene = r#"Scene(
+/// The uniform expansion v_r = a r left free for 0.05 s (FLIP, no
+/// damping) in `model`: its outer surface unloads it and the cylinder
+/// breathes, the kinetic and the strain energy trading places (period
+/// about 14 ms at E = 1e7 Pa). Returns the largest change of their sum and
+/// the least kinetic energy, as fractions of the start.
+fn breathing(model: &str, a: Real) -> (Real, Real) {
+    let scene = format!(
+        r#"Scene(
     grid: (origin: (0.0, 0.0), cell_size: 0.05, cells: (24, 4), edges: (left: Slip, right: Free, bottom: Slip, top: Slip)),
     time: (dt: 1e-5, end: 0.05),
     gravity: (0.0, 0.0),
-    materials: [(name: "m", density: 1000.0, model: LinearElastic((youngs_modulus: 1e7, poisson_ratio: 0.25)))],
+    materials: [(name: "m", density: 1000.0, model: {model})],
     settings: (geometry: Axisymmetric),
-    bodies: [(name: "cylinder", material: "m", shape: Rectangle(min: (0.0, 0.0), max: (1.0, 0.2)), points_per_cell: 2, velocity: Field(x: "0.01 * x", y: "0"))],
-)"#;
-    let scene = Scene::parse(scene, Path::new("breathing.ron")).unwrap_or_else(|e| panic!("{e}"));
+    bodies: [(name: "cylinder", material: "m", shape: Rectangle(min: (0.0, 0.0), max: (1.0, 0.2)), points_per_cell: 2, velocity: Field(x: "{a} * x", y: "0"))],
+)"#
+    );
+    let scene = Scene::parse(&scene, Path::new("breathing.ron")).unwrap_or_else(|e| panic!("{e}"));
     let sim = common::run_scene(&scene);
     let samples = &sim
         .world()
@@ -547,14 +543,44 @@ fn a_breathing_cylinder_keeps_its_energy() {
         .map(|s| s.kinetic)
         .fold(Real::INFINITY, Real::min);
     println!(
-        "breathing cylinder: energy {start:.4e} J/rad, largest change {:.3}%, kinetic energy down to {:.1}% of the start",
+        "breathing cylinder, {model}, a = {a}: energy {start:.4e} J/rad, largest change {:.3}%, kinetic energy down to {:.1}% of the start",
         100.0 * drift,
         100.0 * least_kinetic / samples[0].kinetic
     );
-    // It breathes (its kinetic energy turns into strain and back), and its
-    // energy stays within 1% (measured 0.12% over three and a half periods;
-    // weighting the nodal velocities by m_p / r_p, tried and reverted,
-    // lost a few percent in a reviewer's 1D model of such a cylinder).
-    assert!(least_kinetic < 0.2 * samples[0].kinetic, "{least_kinetic}");
-    assert!(drift < 0.01, "{drift}");
+    (drift, least_kinetic / samples[0].kinetic)
+}
+
+#[test]
+fn a_breathing_cylinder_keeps_its_energy() {
+    // Nothing takes or gives energy, so the sum must stay, up to the
+    // scheme's error: within 1% (measured 0.12% for both over three and a
+    // half periods; weighting the nodal velocities by m_p / r_p, tried and
+    // reverted, lost a few percent in a reviewer's 1D model of such a
+    // cylinder). The Neo-Hookean one breathes at a = 5 1/s, with strains
+    // of a few percent: its stored energy reads the hoop stretch F_θθ and
+    // must change by the work of its stress, hoop part included (with
+    // F_θθ = r / R from the points' positions it drifted 0.9%; with F_θθ = 1
+    // in its stress or its energy, 400% or 78%, measured then). The fluid's
+    // pressure reads J = det F F_θθ (measured 0.10%). (The linear solid is left
+    // at a small amplitude: its Jaumann rate has no stored energy at finite
+    // strain, and at a = 5 its complementary energy drifts 1.5%.)
+    for (model, a) in [
+        (
+            "LinearElastic((youngs_modulus: 1e7, poisson_ratio: 0.25))",
+            0.01,
+        ),
+        (
+            "NeoHookean((youngs_modulus: 1e7, poisson_ratio: 0.25))",
+            5.0,
+        ),
+        (
+            "NewtonianFluid((bulk_modulus: 1e6, gamma: 7.0, viscosity: 0.0))",
+            1.0,
+        ),
+    ] {
+        let (drift, least_kinetic) = breathing(model, a);
+        // It breathes: its kinetic energy turns into strain and back.
+        assert!(least_kinetic < 0.2, "{model}: {least_kinetic}");
+        assert!(drift < 0.01, "{model}: {drift}");
+    }
 }

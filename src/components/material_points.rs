@@ -2,6 +2,7 @@
 
 use crate::materials::ConstitutiveModel;
 use crate::math::{DMat2, DVec2, Real, SymTensor};
+use crate::resources::Geometry;
 use crate::transfer::CHUNK_POINTS;
 use bevy_ecs::prelude::Component;
 use rayon::prelude::*;
@@ -84,7 +85,8 @@ pub struct MaterialPoints {
     pub mass: Vec<Real>,
     /// Initial volume V_p⁰.
     pub initial_volume: Vec<Real>,
-    /// Current volume V_p = det(F) V_p⁰ (in axisymmetry det(F) F_θθ V_p⁰).
+    /// Current volume V_p = det(F) V_p⁰ (in axisymmetry det(F) F_θθ V_p⁰,
+    /// F_θθ = exp(ε_θθ) from the strain's zz component).
     pub volume: Vec<Real>,
     /// In-plane deformation gradient F (F_zz = 1 in plane strain).
     pub deformation_gradient: Vec<DMat2>,
@@ -190,8 +192,15 @@ impl MaterialPoints {
         &self,
         model: &dyn ConstitutiveModel,
         gravity: DVec2,
+        geometry: Geometry,
         chunk_sums: &mut Vec<PointEnergies>,
     ) -> PointEnergies {
+        // F_zz: 1 in plane strain, the hoop stretch exp(ε_θθ) in
+        // axisymmetry (as the stress update takes it).
+        let f_zz = |p: usize| match geometry {
+            Geometry::PlaneStrain => 1.0,
+            Geometry::Axisymmetric => self.strain[p].zz.exp(),
+        };
         (0..self.len().div_ceil(CHUNK_POINTS))
             .into_par_iter()
             .map(|c| {
@@ -199,9 +208,11 @@ impl MaterialPoints {
                 range.fold(PointEnergies::default(), |sum, p| PointEnergies {
                     kinetic: sum.kinetic + 0.5 * self.mass[p] * self.velocity[p].length_squared(),
                     strain: sum.strain
-                        + model
-                            .stored_energy_density(&self.stress[p], &self.deformation_gradient[p])
-                            * self.volume[p],
+                        + model.stored_energy_density(
+                            &self.stress[p],
+                            &self.deformation_gradient[p],
+                            f_zz(p),
+                        ) * self.volume[p],
                     gravity: sum.gravity - self.mass[p] * gravity.dot(self.displacement(p)),
                 })
             })

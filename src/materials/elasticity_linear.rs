@@ -60,7 +60,7 @@ impl ConstitutiveModel for LinearElastic {
 
     /// Complementary energy ½ σ : C⁻¹ : σ, which equals the stored strain
     /// energy for linear elasticity (including any initial stress).
-    fn stored_energy_density(&self, s: &SymTensor, _f: &DMat2) -> Real {
+    fn stored_energy_density(&self, s: &SymTensor, _f: &DMat2, _f_zz: Real) -> Real {
         let (e, nu) = (self.youngs_modulus, self.poisson_ratio);
         let normal = s.xx * s.xx + s.yy * s.yy + s.zz * s.zz
             - 2.0 * nu * (s.xx * s.yy + s.yy * s.zz + s.zz * s.xx);
@@ -96,7 +96,7 @@ mod tests {
         let mut s = SymTensor::ZERO;
         STEEL.update_stress(&mut s, &PointStep::rate(eps, 0.0, 1.0));
         let expected = 0.5 * s.contract(&eps);
-        let got = STEEL.stored_energy_density(&s, &DMat2::IDENTITY);
+        let got = STEEL.stored_energy_density(&s, &DMat2::IDENTITY, 1.0);
         assert!(
             (got - expected).abs() < 1e-9 * expected,
             "{got} vs {expected}"

@@ -1,16 +1,17 @@
-//! Compressible neo-Hookean hyperelasticity in plane strain.
+//! Compressible neo-Hookean hyperelasticity, plane strain or axisymmetric.
 //!
 //! The stress is a function of the deformation gradient F alone (no rate
 //! form, so it is objective by construction):
 //!
 //! σ = (μ / J)(b − I) + (λ ln J / J) I,  b = F Fᵀ,  J = det F,
 //!
-//! with F_zz = 1, so b_zz = 1 and σ_zz = λ ln J / J. The stored energy per
-//! unit reference volume is
+//! with F_zz = 1 in plane strain, so b_zz = 1 and σ_zz = λ ln J / J; in
+//! axisymmetry F_zz is the hoop stretch F_θθ, b_zz = F_θθ² and J = det F
+//! F_θθ. The stored energy per unit reference volume is
 //!
 //! W = μ/2 (tr b − 3 − 2 ln J) + λ/2 (ln J)²,
 //!
-//! where tr b counts b_zz = 1; σ = (1/J) ∂W/∂F Fᵀ. For small strain ε the
+//! where tr b counts b_zz; σ = (1/J) ∂W/∂F Fᵀ. For small strain ε the
 //! model reduces to Hooke's law σ = λ tr ε I + 2μ ε with the same λ and μ.
 
 use super::{ConstitutiveModel, LinearElastic, PointStep};
@@ -47,13 +48,15 @@ impl NeoHookean {
         }
     }
 
-    /// The Cauchy stress for the deformation gradient `f` (F_zz = 1). An
-    /// inverted point (J ≤ 0) gives a non-finite stress, which the engine's
-    /// finiteness check reports.
-    pub fn stress(&self, f: &DMat2) -> SymTensor {
+    /// The Cauchy stress for the in-plane deformation gradient `f` and the
+    /// out-of-plane stretch `f_zz` (1 in plane strain, r / R in
+    /// axisymmetry): σ = μ/J (b − I) + λ ln J / J I, J = det(f) f_zz,
+    /// b_zz = f_zz². An inverted point (J ≤ 0) gives a non-finite stress,
+    /// which the engine's finiteness check reports.
+    pub fn stress(&self, f: &DMat2, f_zz: Real) -> SymTensor {
         let elastic = self.small_strain();
         let (mu, lambda) = (elastic.shear_modulus(), elastic.lame_lambda());
-        let j = f.determinant();
+        let j = f.determinant() * f_zz;
         let b = *f * f.transpose();
         let volumetric = lambda * j.ln() / j;
         let shear = mu / j;
@@ -62,7 +65,7 @@ impl NeoHookean {
             shear * (b.x_axis.x - 1.0) + volumetric,
             shear * (b.y_axis.y - 1.0) + volumetric,
             shear * b.y_axis.x,
-            volumetric,
+            shear * (f_zz * f_zz - 1.0) + volumetric,
         )
     }
 }
@@ -72,7 +75,7 @@ impl ConstitutiveModel for NeoHookean {
     /// stress given in a scene is replaced at the first step.
     #[inline]
     fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) {
-        *stress = self.stress(&step.f);
+        *stress = self.stress(&step.f, step.f_zz);
     }
 
     /// λ + 2μ, the tangent at F = I. The tangent stiffens under compression
@@ -83,13 +86,13 @@ impl ConstitutiveModel for NeoHookean {
 
     /// W / J with W = μ/2 (tr b − 3 − 2 ln J) + λ/2 (ln J)² (per unit
     /// current volume); read from F, the stress is not needed.
-    fn stored_energy_density(&self, _stress: &SymTensor, f: &DMat2) -> Real {
+    fn stored_energy_density(&self, _stress: &SymTensor, f: &DMat2, f_zz: Real) -> Real {
         let elastic = self.small_strain();
         let (mu, lambda) = (elastic.shear_modulus(), elastic.lame_lambda());
-        let j = f.determinant();
+        let j = f.determinant() * f_zz;
         let ln_j = j.ln();
         let b = *f * f.transpose();
-        let trace_b = b.x_axis.x + b.y_axis.y + 1.0;
+        let trace_b = b.x_axis.x + b.y_axis.y + f_zz * f_zz;
         (0.5 * mu * (trace_b - 3.0 - 2.0 * ln_j) + 0.5 * lambda * ln_j * ln_j) / j
     }
 }
@@ -129,7 +132,7 @@ mod tests {
         let size: Real = 1e-6;
         let eps = SymTensor::new(size, -0.4 * size, 0.7 * size, 0.0);
         let f = rows(1.0 + eps.xx, eps.xy, eps.xy, 1.0 + eps.yy);
-        let hyper = RUBBER.stress(&f);
+        let hyper = RUBBER.stress(&f, 1.0);
         let mut linear = SymTensor::ZERO;
         RUBBER
             .small_strain()
@@ -166,10 +169,10 @@ mod tests {
         // σ(R F) = R σ(F) Rᵀ; both sides are a few dozen flops from the same
         // inputs: 1e-12 relative.
         let f = rows(1.2, 0.3, -0.1, 0.8);
-        let sigma = RUBBER.stress(&f);
+        let sigma = RUBBER.stress(&f, 1.0);
         for angle in [0.3, 1.0, 2.5, -0.7] {
             let r = DMat2::from_angle(angle);
-            let turned = RUBBER.stress(&(r * f));
+            let turned = RUBBER.stress(&(r * f), 1.0);
             let expected = rotated(&sigma, angle);
             assert!(
                 max_diff(&turned, &expected) < 1e-12 * max_abs(&sigma),
@@ -181,41 +184,47 @@ mod tests {
     #[test]
     fn stored_energy_is_zero_at_rest_and_equals_the_stress_work() {
         assert_eq!(
-            RUBBER.stored_energy_density(&SymTensor::ZERO, &DMat2::IDENTITY),
+            RUBBER.stored_energy_density(&SymTensor::ZERO, &DMat2::IDENTITY, 1.0),
             0.0
         );
-        // Along F(t) = I + t A, t ∈ [0, 1], the work per unit reference
-        // volume ∫ J σ : D dt (D = sym(Ḟ F⁻¹)) must equal W(F(1)) = J w.
-        // Composite Simpson rule with 2000 intervals: error O(h⁴) ≈ 1e-13 of
-        // the smooth integrand's scale; tolerance 1e-9 relative.
+        // Along F(t) = I + t A in the plane and F_zz(t) = 1 + t c out of it
+        // (c = 0 in plane strain, c ≠ 0 for a hoop stretch), t ∈ [0, 1], the
+        // work per unit reference volume ∫ J σ : D dt (D = sym(Ḟ F⁻¹),
+        // D_zz = c / F_zz) must equal W(F(1)) = J w. Composite Simpson rule
+        // with 2000 intervals: error O(h⁴) ≈ 1e-13 of the smooth integrand's
+        // scale; tolerance 1e-9 relative.
         let a = rows(0.4, 0.25, -0.15, -0.3);
-        let integrand = |t: Real| {
-            let f = DMat2::IDENTITY + a * t;
-            let d = rate_of_deformation(a * f.inverse());
-            f.determinant() * RUBBER.stress(&f).contract(&d)
-        };
-        let n = 2000;
-        let h = 1.0 / n as Real;
-        let work = (0..=n)
-            .map(|k| {
-                let weight = if k == 0 || k == n {
-                    1.0
-                } else if k % 2 == 1 {
-                    4.0
-                } else {
-                    2.0
-                };
-                weight * integrand(k as Real * h)
-            })
-            .sum::<Real>()
-            * h
-            / 3.0;
-        let f_end = DMat2::IDENTITY + a;
-        let stored =
-            f_end.determinant() * RUBBER.stored_energy_density(&RUBBER.stress(&f_end), &f_end);
-        assert!(
-            (stored - work).abs() < 1e-9 * work.abs(),
-            "stored {stored} vs work {work}"
-        );
+        for c in [0.0, 0.3, -0.2] {
+            let integrand = |t: Real| {
+                let (f, f_zz) = (DMat2::IDENTITY + a * t, 1.0 + c * t);
+                let mut d = rate_of_deformation(a * f.inverse());
+                d.zz = c / f_zz;
+                f.determinant() * f_zz * RUBBER.stress(&f, f_zz).contract(&d)
+            };
+            let n = 2000;
+            let h = 1.0 / n as Real;
+            let work = (0..=n)
+                .map(|k| {
+                    let weight = if k == 0 || k == n {
+                        1.0
+                    } else if k % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    };
+                    weight * integrand(k as Real * h)
+                })
+                .sum::<Real>()
+                * h
+                / 3.0;
+            let (f_end, f_zz) = (DMat2::IDENTITY + a, 1.0 + c);
+            let stress = RUBBER.stress(&f_end, f_zz);
+            let stored =
+                f_end.determinant() * f_zz * RUBBER.stored_energy_density(&stress, &f_end, f_zz);
+            assert!(
+                (stored - work).abs() < 1e-9 * work.abs(),
+                "c = {c}: stored {stored} vs work {work}"
+            );
+        }
     }
 }

@@ -61,12 +61,12 @@ impl NewtonianFluid {
 }
 
 impl ConstitutiveModel for NewtonianFluid {
-    /// σ = 2 μ_w D′ − p I from the step's D and J = det F^{n+1} (eq. 22);
+    /// σ = 2 μ_w D′ − p I from the step's D and J = det F^{n+1} F_zz (eq. 22);
     /// the incoming stress is not read.
     #[inline]
     fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) {
         let d = step.d;
-        let p = self.pressure(step.f.determinant());
+        let p = self.pressure(step.f.determinant() * step.f_zz);
         let two_mu = 2.0 * self.viscosity;
         let third_trace = (d.xx + d.yy + d.zz) / 3.0;
         *stress = SymTensor::new(
@@ -89,9 +89,9 @@ impl ConstitutiveModel for NewtonianFluid {
     /// U(J) / J with U(J) = −∫₁ᴶ p dJ′ = K [(J^(1−γ) − 1)/(γ − 1) + J − 1]
     /// (K (J − 1 − ln J) for γ = 1), zero at J = 1 and positive otherwise.
     /// The viscous stress dissipates and stores nothing, so σ is not read.
-    fn stored_energy_density(&self, _stress: &SymTensor, f: &DMat2) -> Real {
+    fn stored_energy_density(&self, _stress: &SymTensor, f: &DMat2, f_zz: Real) -> Real {
         let (k, gamma) = (self.bulk_modulus, self.gamma);
-        let j = f.determinant();
+        let j = f.determinant() * f_zz;
         let ln_j = j.ln();
         let power_part = if gamma == 1.0 {
             -ln_j
@@ -192,14 +192,14 @@ mod tests {
                     * h
                     / 3.0;
                 let f = DMat2::from_diagonal(DVec2::new(j_end, 1.0));
-                let stored = j_end * fluid.stored_energy_density(&SymTensor::ZERO, &f);
+                let stored = j_end * fluid.stored_energy_density(&SymTensor::ZERO, &f, 1.0);
                 assert!(
                     (stored - work).abs() < 1e-9 * work.abs(),
                     "γ {gamma}, J {j_end}: {stored} vs {work}"
                 );
             }
             assert_eq!(
-                fluid.stored_energy_density(&SymTensor::ZERO, &DMat2::IDENTITY),
+                fluid.stored_energy_density(&SymTensor::ZERO, &DMat2::IDENTITY, 1.0),
                 0.0
             );
         }

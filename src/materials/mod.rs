@@ -28,10 +28,11 @@ pub struct PointStep {
     pub d: SymTensor,
     /// In-plane spin W_xy = ½ (L_xy − L_yx) (1/s).
     pub w: Real,
-    /// In-plane deformation gradient at the end of the step, F^{n+1} (the
-    /// models that read it, NeoHookean and the fluid, take F_zz = 1: plane
-    /// strain only).
+    /// In-plane deformation gradient at the end of the step, F^{n+1}.
     pub f: DMat2,
+    /// Its out-of-plane component F_zz^{n+1}: 1 in plane strain, the hoop
+    /// stretch r / R in axisymmetry.
+    pub f_zz: Real,
     /// Step length Δt (s).
     pub dt: Real,
 }
@@ -44,6 +45,7 @@ impl PointStep {
             d,
             w,
             f: DMat2::IDENTITY,
+            f_zz: 1.0,
             dt,
         }
     }
@@ -61,8 +63,9 @@ pub trait ConstitutiveModel: Send + Sync {
     fn p_wave_modulus(&self) -> Real;
 
     /// Elastic energy stored per unit current volume at `stress` and
-    /// deformation gradient `f` (J/m³).
-    fn stored_energy_density(&self, stress: &SymTensor, f: &DMat2) -> Real;
+    /// deformation gradient `f` with out-of-plane component `f_zz` (1 in
+    /// plane strain, the hoop stretch in axisymmetry) (J/m³).
+    fn stored_energy_density(&self, stress: &SymTensor, f: &DMat2, f_zz: Real) -> Real;
 }
 
 /// A plasticity model on a linear elastic predictor: the elastic trial
@@ -88,8 +91,8 @@ impl<T: ElasticPlastic> ConstitutiveModel for T {
         self.elastic().p_wave_modulus()
     }
 
-    fn stored_energy_density(&self, stress: &SymTensor, f: &DMat2) -> Real {
-        self.elastic().stored_energy_density(stress, f)
+    fn stored_energy_density(&self, stress: &SymTensor, f: &DMat2, f_zz: Real) -> Real {
+        self.elastic().stored_energy_density(stress, f, f_zz)
     }
 }
 

@@ -1,5 +1,6 @@
 //! Time series recorded during a run: probes and energies.
 
+use super::Geometry;
 use super::body_contacts::PairSummary;
 use crate::components::{Material, MaterialPoints, PointEnergies};
 use crate::math::{DVec2, Real, SymTensor};
@@ -106,7 +107,8 @@ pub struct EnergySample {
 }
 
 impl EnergySample {
-    /// The energies of `bodies` (in scene order) at `time` under `gravity`,
+    /// The energies of `bodies` (in scene order) at `time` under `gravity`
+    /// in `geometry`,
     /// without contacts and damping (`contact`, `dissipated` and `damped`
     /// zero); `scratch` is reused
     /// between calls (see [`MaterialPoints::energies`]).
@@ -114,10 +116,11 @@ impl EnergySample {
         time: Real,
         bodies: impl Iterator<Item = (&'a MaterialPoints, &'a Material)>,
         gravity: DVec2,
+        geometry: Geometry,
         scratch: &mut Vec<PointEnergies>,
     ) -> Self {
         let sum = bodies.fold(PointEnergies::default(), |sum, (points, material)| {
-            sum + points.energies(material.model.as_model(), gravity, scratch)
+            sum + points.energies(material.model.as_model(), gravity, geometry, scratch)
         });
         Self {
             time,

@@ -4,7 +4,6 @@
 
 use super::{MotionSpec, Scene};
 use crate::components::Pose;
-use crate::materials::MaterialModel;
 use crate::resources::{EdgeCondition, Geometry};
 use crate::shape_functions::ShapeFunction;
 
@@ -48,20 +47,6 @@ pub(super) fn axisymmetry_error(scene: &Scene) -> Option<(Vec<String>, String)> 
                 scene.gravity
             ),
         );
-    }
-    for m in &scene.materials {
-        if matches!(
-            m.model,
-            MaterialModel::NeoHookean(_) | MaterialModel::NewtonianFluid(_)
-        ) {
-            return at(
-                &["materials", &quoted(&m.name)],
-                format!(
-                    "material '{}': NeoHookean and NewtonianFluid are not available under settings.geometry: Axisymmetric yet (their stress from F and their stored energy take F_θθ = 1); LinearElastic, MohrCoulomb and DruckerPrager are",
-                    m.name
-                ),
-            );
-        }
     }
     for b in &scene.bodies {
         if b.acceleration.is_some_and(|a| a.value.x != 0.0) {

@@ -138,6 +138,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
             .iter()
             .filter_map(|e| Some((world.get::<MaterialPoints>(*e)?, world.get::<Material>(*e)?))),
         scene.gravity,
+        scene.settings.geometry,
         &mut Vec::new(),
     );
     world.insert_resource(grid);

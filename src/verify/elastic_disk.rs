@@ -223,6 +223,7 @@ impl Mesh {
                         d: rate_of_deformation(l),
                         w: if small_strain { 0.0 } else { spin(l) },
                         f: state.deformation,
+                        f_zz: 1.0,
                         dt,
                     };
                     model.update_stress(&mut state.stress, &step);
@@ -423,6 +424,7 @@ mod tests {
                 d: rate_of_deformation(l),
                 w: spin(l),
                 f: DMat2::IDENTITY + dt * l,
+                f_zz: 1.0,
                 dt,
             },
         );
