@@ -36,8 +36,8 @@ type BlockData = (
 /// disk's overlap area, per `ContactSettings::penetration`), then eq. 18 with
 /// the pair's tangential spring from the previous step (dropped on
 /// separation; in axisymmetry the law's stiffnesses per metre times the
-/// point's radius, as its mass is, so forces are per radian) and the relative velocity
-/// at the contact point x_c:
+/// point's radius, as its mass is, so forces are per radian) and the
+/// relative velocity at the contact point x_c:
 /// * for a pair in contact last step, the actual motion over that step of
 ///   the material at last step's contact point relative to the block's
 ///   surface point it touched: (Δx_p + L_p (x_c − x_p) Δt − Δx_surface)/Δt,

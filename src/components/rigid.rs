@@ -144,13 +144,11 @@ pub struct PointContact {
     /// The point's position when the contact was found (m).
     pub from: DVec2,
     /// Energy stored in the contact's springs (J/m; per radian in
-    /// axisymmetry): the normal spring's
-    /// (½ k_n δ², or k_n ∫A for the overlap-area measure) plus the
-    /// tangential spring's.
+    /// axisymmetry): the normal spring's (½ k_n δ², or k_n ∫A for the
+    /// overlap-area measure) plus the tangential spring's.
     pub potential: Real,
-    /// Energy stored in the tangential spring, |f_t|² / (2 k_t) (J/m; per
-    /// radian in axisymmetry),
-    /// with the k_t the force was found with.
+    /// Energy stored in the tangential spring, |f_t|² / (2 k_t) with the
+    /// k_t the force was found with (J/m; per radian in axisymmetry).
     pub tangential_potential: Real,
 }
 

@@ -50,7 +50,7 @@ impl ContactLaw {
     }
 
     /// The law for a contact `thickness` metres long out of the plane (per
-    /// radian in axisymmetry: the contact's radius): stiffnesses and damping
+    /// radian in axisymmetry: the point's radius): stiffnesses and damping
     /// times it, the friction unchanged. Forces and energies then come per
     /// unit of thickness the outputs count in.
     pub fn over_thickness(&self, thickness: Real) -> ContactLaw {

@@ -31,7 +31,7 @@ pub struct PointStep {
     /// In-plane deformation gradient at the end of the step, F^{n+1}.
     pub f: DMat2,
     /// Its out-of-plane component F_zz^{n+1}: 1 in plane strain, the hoop
-    /// stretch r / R in axisymmetry.
+    /// stretch F_θθ = exp(ε_θθ) in axisymmetry.
     pub f_zz: Real,
     /// Step length Δt (s).
     pub dt: Real,
