@@ -71,7 +71,7 @@ fn reduced_axisymmetric_pile_meets_more_resistance_than_the_plane_one() {
         plane / 1e6,
         axisymmetric / 1e6
     );
-    // Measured 1.69 times here and 1.40 times over z/R ≥ 6 at full size;
+    // Measured 1.68 times here and 1.40 times over z/R ≥ 6 at full size;
     // a fifth more is asked, well clear of both a plane result (1.0) and
     // of the noise between runs of nearby settings (a few percent), and
     // at most 2.5 times: an engine that ran the plane model and only read
