@@ -23,7 +23,7 @@ use rayon::prelude::*;
 /// when the schedule is built.
 ///
 /// Reads: `Clock`, `Settings::geometry`, `GridLayer`, `TransferScratch::stencils`, `Material`,
-/// `MaterialPoints` (in axisymmetry position, first position, half-size).
+/// `MaterialPoints` (in axisymmetry position and half-size).
 /// Writes: `MaterialPoints` (deformation gradient, volume, stress, strain).
 pub fn update_stress(
     scheme: UpdateScheme,
