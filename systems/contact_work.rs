@@ -1,4 +1,5 @@
-//! The work of this step's tangential contact forces, for the energy balance.
+//! The work of this step's point contacts, for the energy balance: their
+//! tangential forces on the relative motion, the blocks on the points.
 
 use crate::components::{
     BlockContacts, BlockId, BodyIndex, MaterialPoints, Pose, sort_into_scene_order,
@@ -18,7 +19,11 @@ use bevy_ecs::prelude::*;
 /// and the blocks have moved. Blocks in scene order, contacts in their stored order, body
 /// contacts after them: one fixed order of summation.
 ///
-/// Only the tangential part is taken: the normal spring k_n δ is a potential
+/// Adds, too, the work of each block on the points it touches: the force on
+/// the point times the motion of the block's surface point it touched
+/// (`ContactWork::block_work`), what a moving block gives the bodies.
+///
+/// Only the tangential part is taken of the relative motion: the normal spring k_n δ is a potential
 /// of the positions, its energy is in `contact`, and the work of its
 /// force over a step would differ from its change only by the time
 /// integration's error, which belongs to the balance, not to dissipation.
@@ -36,6 +41,7 @@ pub fn account_contact_work(
     blocks: Query<(Entity, &BlockId, &Pose, &BlockContacts)>,
 ) {
     let mut done = work.tangential_work;
+    let mut by_blocks = work.block_work;
     sort_into_scene_order(&mut order, blocks.iter().map(|(e, id, ..)| (id.index, e)));
     for (_, entity) in order.iter() {
         let Ok((_, _, pose, contacts)) = blocks.get(*entity) else {
@@ -50,6 +56,7 @@ pub fn account_contact_work(
             let moved = points.position[k] - c.from + turned;
             let surface_moved = pose.to_world(c.at_on_block) - c.at;
             done += c.tangential.dot(moved - surface_moved);
+            by_blocks += c.force.dot(surface_moved);
         }
     }
     if !body_contacts.current.is_empty() {
@@ -78,4 +85,5 @@ pub fn account_contact_work(
         }
     }
     work.tangential_work = done;
+    work.block_work = by_blocks;
 }

@@ -7,7 +7,7 @@ use crate::components::{
 use crate::math::DVec2;
 use crate::resources::{
     BlockLog, BlockPartSample, BlockSample, BodyContacts, BodyPairLog, BodyPairSample, Clock,
-    ContactWork, Diagnostics, EnergyLog, EnergySample, Gravity, MAX_CONTACT_BODIES,
+    ContactWork, Diagnostics, EnergyLog, EnergySample, Gravity, LoadWork, MAX_CONTACT_BODIES,
     NumericalFailure, PairTally, Probes, Settings,
 };
 use crate::transfer::MIN_POINTS_PER_TASK;
@@ -113,7 +113,7 @@ fn sample_due(clock: &Clock, probes: &Probes) -> bool {
 ///
 /// Reads: `Clock`, `Diagnostics`, `Gravity`, `Settings::geometry`, `MaterialPoints`, `Material`,
 /// `BodyIndex`, `BodyContacts`, `BlockContacts` (the contact springs'
-/// energy), `ContactWork`, `DampedEnergy`. Writes: `Probes`,
+/// energy), `ContactWork`, `LoadWork`, `DampedEnergy`. Writes: `Probes`,
 /// `EnergyLog`.
 #[allow(clippy::too_many_arguments)] // one resource or query per energy term
 pub fn record_probes_and_energy(
@@ -123,7 +123,7 @@ pub fn record_probes_and_energy(
     mut probes: ResMut<Probes>,
     mut energy: ResMut<EnergyLog>,
     body_contacts: Res<BodyContacts>,
-    work: Res<ContactWork>,
+    (work, load_work): (Res<ContactWork>, Res<LoadWork>),
     mut scratch: Local<EnergyScratch>,
     bodies: Query<(
         Entity,
@@ -159,6 +159,8 @@ pub fn record_probes_and_energy(
     }
     sample.contact = springs;
     sample.dissipated = -work.tangential_work - tangential;
+    sample.blocks = -work.block_work;
+    sample.loads = -load_work.work;
     energy.samples.push(sample);
 }
 

@@ -38,7 +38,7 @@ pub use particle_to_grid::particle_to_grid;
 pub use rigid_bodies::move_rigid_blocks;
 pub use stages::{advance_stages, dynamic_blocks_in_scene_order, enter_stage, side_points};
 pub use stress_update::update_stress;
-pub use surface_loads::apply_surface_loads;
+pub use surface_loads::{account_load_work, apply_surface_loads};
 
 use crate::resources::UpdateScheme;
 use bevy_ecs::prelude::*;
@@ -145,6 +145,7 @@ pub fn add_default_systems(schedule: &mut Schedule, scheme: UpdateScheme) {
         (
             check_finite,
             account_contact_work,
+            account_load_work,
             advance_clock,
             // Before the records: a sample at a stage's change shows the
             // state the step ends in, as that step's frame does, and the

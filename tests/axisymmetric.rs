@@ -4,6 +4,7 @@
 mod common;
 
 use mpdem::prelude::*;
+use mpdem::resources::EnergyLog;
 use std::path::Path;
 
 /// Inner and outer radius (m), pressure (Pa), Young's modulus (Pa) and
@@ -80,6 +81,12 @@ struct LameErrors {
     at_a_point: Real,
     /// Largest |u_r − Lamé| at a point.
     displacement: Real,
+    /// |W / W_Lamé − 1|, W the pressure's work per radian (`energy.csv`'s
+    /// −loads), W_Lamé = P a h u_r(a) on the bore's a h per radian.
+    work: Real,
+    /// |2 U / W_Lamé − 1|, U the strain energy at the end: a linear body
+    /// loaded from rest stores half the work.
+    stored: Real,
 }
 
 impl LameErrors {
@@ -91,6 +98,12 @@ impl LameErrors {
         assert!(self.hoop < 0.01, "{self:?}");
         assert!(self.at_a_point < 0.12, "{self:?}");
         assert!(self.displacement < 0.01, "{self:?}");
+        // The work and the stored energy as the displacement, within 1%.
+        // (The balance is not asserted here: under PIC 1.0 with particle
+        // damping 0.7 the `damped` column takes 3% of W more than W − U,
+        // the damping's own accounting error, see tests/energy_balance.rs.)
+        assert!(self.work < 0.01, "{self:?}");
+        assert!(self.stored < 0.01, "{self:?}");
     }
 }
 
@@ -108,6 +121,8 @@ fn lame_errors(scheme: &str) -> LameErrors {
         hoop: 0.0,
         at_a_point: 0.0,
         displacement: 0.0,
+        work: 0.0,
+        stored: 0.0,
     };
     for p in 0..points.len() {
         let r = points.initial_position[p].x;
@@ -127,6 +142,11 @@ fn lame_errors(scheme: &str) -> LameErrors {
         errors.radial = errors.radial.max((rr - lame_rr).abs() / n / P);
         errors.hoop = errors.hoop.max((tt - lame_tt).abs() / n / P);
     }
+    let lame_work = P * A * 0.2 * u_inner;
+    let energy = &sim.world().resource::<EnergyLog>().samples;
+    let last = energy.last().expect("samples");
+    errors.work = (-last.loads / lame_work - 1.0).abs();
+    errors.stored = (2.0 * last.strain / lame_work - 1.0).abs();
     println!("{scheme}: {errors:?}");
     errors
 }

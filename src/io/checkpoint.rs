@@ -32,8 +32,8 @@ use crate::io::state_hash::StateHasher;
 use crate::math::Real;
 use crate::resources::{
     BlockContactHistory, BlockLog, BodyContacts, BodyPairContact, BodyPairLog, Clock, ContactWork,
-    EdgeConditions, EnergyLog, Gravity, Grid, ProbeSample, Probes, Settings, StageEndReason,
-    StageLog, StagePlan, StageProgress,
+    EdgeConditions, EnergyLog, Gravity, Grid, LoadWork, ProbeSample, Probes, Settings,
+    StageEndReason, StageLog, StagePlan, StageProgress,
 };
 use crate::scene::{OutputSpec, Scene, SceneError, Shape, spawn_block};
 use bevy_ecs::prelude::*;
@@ -49,7 +49,7 @@ const MAGIC: &[u8; 8] = b"MPDEMCK\0";
 /// refused rather than misread. (9: surface tractions no longer held in
 /// the points' external forces; 10: the sampling interval kept; 11: the
 /// settings' geometry and the contacts' tangential spring energy.)
-const FORMAT: u32 = 11;
+const FORMAT: u32 = 12;
 
 /// Why a checkpoint could not be written or resumed.
 #[derive(Debug, thiserror::Error)]
@@ -121,6 +121,8 @@ struct RunState {
     /// This step's and the previous step's body–body contacts.
     body_contacts: [Vec<BodyPairContact>; 2],
     contact_work: ContactWork,
+    /// The surface loads' work so far (`LoadWork::work`).
+    load_work: Real,
     probe_samples: Vec<ProbeSample>,
     /// The steps between samples of the run that wrote the checkpoint: a
     /// sample at its step off that interval was taken because the run
@@ -313,6 +315,7 @@ fn capture(world: &mut World, fingerprint: u64, user: Vec<StoredState>) -> RunSt
             body_contacts.previous.clone(),
         ],
         contact_work: *world.resource::<ContactWork>(),
+        load_work: world.resource::<LoadWork>().work,
         probe_samples: world.resource::<Probes>().samples.clone(),
         probe_every: world.resource::<Probes>().every,
         energy: world.resource::<EnergyLog>().clone(),
@@ -368,6 +371,7 @@ fn apply(
         contacts.previous = previous;
     }
     *world.resource_mut::<ContactWork>() = state.contact_work;
+    *world.resource_mut::<LoadWork>() = LoadWork::done(state.load_work);
     // The records were sized for the whole run when the scene was spawned
     // (recording never allocates in a step): refill them in place.
     refill(

@@ -1,4 +1,6 @@
-//! Work the tangential contact forces have done since the start of the run.
+//! Work the point contacts have done since the start of the run: their
+//! tangential forces on the relative motion, and the blocks' surfaces on the
+//! points.
 
 use crate::math::Real;
 use bevy_ecs::prelude::Resource;
@@ -17,4 +19,10 @@ pub struct ContactWork {
     /// f_t the force found at the step's start (J/m). Negative when the
     /// contacts take energy.
     pub tangential_work: Real,
+    /// Σ over steps and point–block contacts of f · Δs, f the force on the
+    /// point and Δs the motion over the step of the block's surface point
+    /// it touched: the work the blocks did on the bodies (J/m; per radian
+    /// in axisymmetry). Moving blocks, kinematic or dynamic, give (or take)
+    /// the bodies' energy through it; a fixed block does none.
+    pub block_work: Real,
 }

@@ -7,6 +7,7 @@ mod contact_settings;
 mod contact_work;
 mod diagnostics;
 mod grid;
+mod load_work;
 mod records;
 mod settings;
 mod shared_layers;
@@ -21,6 +22,7 @@ pub use contact_settings::{BlockContactHistory, BlockContactKey, ContactSettings
 pub use contact_work::ContactWork;
 pub use diagnostics::{Diagnostics, NumericalFailure};
 pub use grid::{EdgeCondition, EdgeConditions, Grid, GridEdge};
+pub use load_work::LoadWork;
 pub use records::{
     BlockLog, BlockPartSample, BlockSample, BodyPairLog, BodyPairSample, EnergyLog, EnergySample,
     Probe, ProbeSample, Probes,

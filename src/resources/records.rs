@@ -91,6 +91,15 @@ pub struct EnergySample {
     /// Gravity's potential relative to the initial positions,
     /// −Σ m_p g · (x_p − X_p) (J/m), with the gravity of the time.
     pub gravity: Real,
+    /// Minus the work the stages' surface tractions have done on the bodies
+    /// since the start (J/m; [`crate::resources::LoadWork`]): for a dead
+    /// load, its potential −F · u.
+    pub loads: Real,
+    /// Minus the work the blocks have done on the bodies through the point
+    /// contacts since the start (J/m; [`crate::resources::ContactWork::block_work`]):
+    /// what a kinematic block drives into the bodies, or a dynamic block
+    /// gives them (the blocks' own energy is not in the balance).
+    pub blocks: Real,
     /// Energy the point contacts' tangential forces have taken from the
     /// bodies since the start and their springs do not hold (J/m): −W_t −
     /// Σ |f_t|²/(2 k_t), W_t their work on the actual relative motion at
@@ -128,6 +137,8 @@ impl EnergySample {
             strain: sum.strain,
             contact: 0.0,
             gravity: sum.gravity,
+            loads: 0.0,
+            blocks: 0.0,
             dissipated: 0.0,
             damped: 0.0,
         }
@@ -140,14 +151,14 @@ impl EnergySample {
         self.kinetic + self.strain + self.contact
     }
 
-    /// Total + gravity's potential + what the contacts dissipated + what
-    /// damping and the PIC part took (J/m): constant for elastic bodies
-    /// under constant gravity, touching each other and fixed blocks, up to
-    /// the MPM scheme's own error. It leaves out the work of the contacts'
-    /// normal dashpots, of tractions, of moving blocks and of the grid's
-    /// boundaries, and the blocks' own energy.
+    /// Total + gravity's potential + minus the work of the surface loads
+    /// and of the blocks + what the contacts dissipated + what damping and
+    /// the PIC part took (J/m): constant for elastic bodies under constant
+    /// gravity, touching each other and blocks, up to the MPM scheme's own
+    /// error. It leaves out the work of the contacts' normal dashpots and
+    /// of the grid's boundaries, and the blocks' own energy.
     pub fn balance(&self) -> Real {
-        self.total() + self.gravity + self.dissipated + self.damped
+        self.total() + self.gravity + self.loads + self.blocks + self.dissipated + self.damped
     }
 }
 

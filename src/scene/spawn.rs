@@ -218,6 +218,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         ..Default::default()
     });
     world.insert_resource(crate::resources::ContactWork::default());
+    world.insert_resource(crate::resources::LoadWork::default());
     if !scene.stages.is_empty() {
         let mut plan = StagePlan {
             scene: scene.clone(),
