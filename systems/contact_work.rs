@@ -23,10 +23,11 @@ use bevy_ecs::prelude::*;
 /// the point times the motion of the block's surface point it touched
 /// (`ContactWork::block_work`), what a moving block gives the bodies.
 ///
-/// Only the tangential part is taken of the relative motion: the normal spring k_n δ is a potential
-/// of the positions, its energy is in `contact`, and the work of its
-/// force over a step would differ from its change only by the time
-/// integration's error, which belongs to the balance, not to dissipation.
+/// Of the relative motion, only the tangential force's work is taken: the
+/// normal spring k_n δ is a potential of the positions, its energy is in
+/// `contact`, and the work of its force over a step would differ from its
+/// change only by the time integration's error, which belongs to the
+/// balance, not to dissipation.
 ///
 /// Reads: `Clock`, `BlockId`, `BlockContacts`, `Pose`, `BodyContacts`,
 /// `BodyIndex`, `MaterialPoints` (position, velocity gradient, contact

@@ -14,6 +14,7 @@ mod contact_work;
 mod diagnostics;
 mod grid_reset;
 mod grid_to_particle;
+mod load_work;
 mod neighbours;
 mod nodal_solve;
 mod particle_to_grid;
@@ -32,13 +33,14 @@ pub use diagnostics::{
 };
 pub use grid_reset::reset_grid_layers;
 pub use grid_to_particle::grid_to_particle;
+pub use load_work::account_load_work;
 pub use neighbours::rebuild_neighbour_lists;
 pub use nodal_solve::solve_nodal_momentum;
 pub use particle_to_grid::particle_to_grid;
 pub use rigid_bodies::move_rigid_blocks;
 pub use stages::{advance_stages, dynamic_blocks_in_scene_order, enter_stage, side_points};
 pub use stress_update::update_stress;
-pub use surface_loads::{account_load_work, apply_surface_loads};
+pub use surface_loads::apply_surface_loads;
 
 use crate::resources::UpdateScheme;
 use bevy_ecs::prelude::*;
@@ -76,7 +78,8 @@ pub enum MpmSystems {
     GridToParticle,
     /// Integration of dynamic rigid blocks.
     RigidBodies,
-    /// Finiteness check, contact work, clock, probes and energies.
+    /// Finiteness check, contact and load work, clock, stages, probes and
+    /// energies.
     Diagnostics,
     /// Empty: a hook for user systems at the end of the step.
     Last,

@@ -1,10 +1,9 @@
-//! Algorithm 1, line 10 (eq. 7b's traction term): surface loads to the
-//! grid, and their work for the energy balance.
+//! Algorithm 1, line 10 (eq. 7b's traction term): surface loads to the grid.
 
 use super::contact_transfer::add_with_hat_functions;
 use crate::components::{GridLayer, MaterialPoints};
 use crate::math::DVec2;
-use crate::resources::{Grid, LoadWork, Settings, StagePlan};
+use crate::resources::{Grid, LoadWork, LoadedEdge, Settings, StagePlan};
 use crate::scene::Side;
 use bevy_ecs::prelude::*;
 
@@ -18,7 +17,7 @@ use bevy_ecs::prelude::*;
 /// surcharge 70% of it.) The loads are dead: fixed forces, in the order
 /// the stages set them. In axisymmetry a force per metre of the edge
 /// times the edge's radius: per radian. Each applied force is kept in
-/// `LoadWork::applied` with where its material is, for its work.
+/// `LoadWork::applied` for its work (`account_load_work`).
 ///
 /// Reads: `Grid`, `Settings::geometry`, `StagePlan`, `MaterialPoints`
 /// (position, half-size, deformation gradient).
@@ -38,66 +37,27 @@ pub fn apply_surface_loads(
         let Ok((points, mut layer)) = bodies.get_mut(load.body) else {
             continue;
         };
-        let outward = outward(load.side);
+        let outward = match load.side {
+            Side::Top => DVec2::Y,
+            Side::Bottom => DVec2::NEG_Y,
+            Side::Right => DVec2::X,
+            Side::Left => DVec2::NEG_X,
+        };
         for &(p, force) in &load.forces {
-            let p = p as usize;
-            let edge = points.position[p] + outward * points.half_size[p];
+            let k = p as usize;
+            let arm = outward * points.half_size[k];
+            let edge = points.position[k] + arm;
             // A domain pushed past the axis loads nothing there.
             let force = force * settings.geometry.thickness(edge).max(0.0);
             add_with_hat_functions(&grid, &mut layer, edge, force);
-            work.applied
-                .push((force, material_edge(points, p, outward)));
+            work.applied.push(LoadedEdge {
+                body: load.body,
+                point: p,
+                force,
+                arm,
+                from: points.position[k],
+                deformation_from: points.deformation_gradient[k],
+            });
         }
-    }
-}
-
-/// Adds the work of this step's surface loads to `LoadWork::work`: each
-/// applied force times the motion over the step of the material at the
-/// middle of its point's outer edge ([`material_edge`]; taken at the
-/// points' centres, a column's settlement under a surcharge would be 2.5%
-/// short for 20 points across it). Run after the points have moved and
-/// before the stages can change the loads; the loads in the order they
-/// were applied.
-///
-/// Reads: `StagePlan`, `MaterialPoints` (position, deformation gradient,
-/// half-size). Writes: `LoadWork`.
-pub fn account_load_work(
-    plan: Option<Res<StagePlan>>,
-    mut work: ResMut<LoadWork>,
-    bodies: Query<&MaterialPoints>,
-) {
-    let Some(plan) = plan else {
-        return;
-    };
-    let LoadWork { work, applied } = &mut *work;
-    let mut next = 0;
-    for load in &plan.progress.loads {
-        let Ok(points) = bodies.get(load.body) else {
-            continue;
-        };
-        let taken = &applied[next..next + load.forces.len()];
-        next += load.forces.len();
-        let outward = outward(load.side);
-        for (&(p, _), (force, from)) in load.forces.iter().zip(taken) {
-            *work += force.dot(material_edge(points, p as usize, outward) - *from);
-        }
-    }
-}
-
-/// Where the material at the middle of point `p`'s outer edge on the side
-/// `outward` is: x_p + F_p A, A the arm from the point to that edge in the
-/// undeformed domain. (The load itself acts at x_p + A: domains keep their
-/// undeformed size; the work follows the material.)
-fn material_edge(points: &MaterialPoints, p: usize, outward: DVec2) -> DVec2 {
-    points.position[p] + points.deformation_gradient[p] * (outward * points.half_size[p])
-}
-
-/// The outward normal of a loaded side.
-fn outward(side: Side) -> DVec2 {
-    match side {
-        Side::Top => DVec2::Y,
-        Side::Bottom => DVec2::NEG_Y,
-        Side::Right => DVec2::X,
-        Side::Left => DVec2::NEG_X,
     }
 }

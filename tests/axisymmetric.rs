@@ -14,6 +14,8 @@ const B: Real = 1.0;
 const P: Real = 1e5;
 const E: Real = 1e8;
 const NU: Real = 0.3;
+/// The cylinders' height (m).
+const HEIGHT: Real = 0.2;
 
 /// A cylinder `inner` ≤ r ≤ `outer` (inner 0: solid), 0.2 m of its length
 /// between two slip walls (so ε_zz = 0), with the grid reaching 0.2 m past
@@ -41,7 +43,7 @@ fn pressed_cylinder(
     gravity: (0.0, 0.0),
     settings: (geometry: Axisymmetric, pic_fraction: 1.0, particle_damping: 0.7, {settings}),
     materials: [(name: "steel", density: 1000.0, model: LinearElastic((youngs_modulus: {E:e}, poisson_ratio: {NU})))],
-    bodies: [(name: "cylinder", material: "steel", shape: Rectangle(min: ({inner}, 0.0), max: ({outer}, 0.2)), points_per_cell: 2)],
+    bodies: [(name: "cylinder", material: "steel", shape: Rectangle(min: ({inner}, 0.0), max: ({outer}, {HEIGHT})), points_per_cell: 2)],
     stages: [(name: "pressure", end: Duration(1.2), tractions: [{load}])],
 )"#
     )
@@ -142,7 +144,7 @@ fn lame_errors(scheme: &str) -> LameErrors {
         errors.radial = errors.radial.max((rr - lame_rr).abs() / n / P);
         errors.hoop = errors.hoop.max((tt - lame_tt).abs() / n / P);
     }
-    let lame_work = P * A * 0.2 * u_inner;
+    let lame_work = P * A * HEIGHT * u_inner;
     let energy = &sim.world().resource::<EnergyLog>().samples;
     let last = energy.last().expect("samples");
     errors.work = (-last.loads / lame_work - 1.0).abs();

@@ -14,6 +14,7 @@ fn coarse_disks_carry_the_applied_load_along_the_line_of_centres() {
         points_per_cell: 1,
         angle: 0.0,
         neo_hookean: false,
+        shift: 0.0,
     };
     let base = common::load_scene("hertz_disks.ron");
     let scene = resolution.scene(&base).unwrap_or_else(|e| panic!("{e}"));

@@ -48,7 +48,8 @@ const MAGIC: &[u8; 8] = b"MPDEMCK\0";
 /// The layout of the stored state; a checkpoint of another layout is
 /// refused rather than misread. (9: surface tractions no longer held in
 /// the points' external forces; 10: the sampling interval kept; 11: the
-/// settings' geometry and the contacts' tangential spring energy.)
+/// settings' geometry and the contacts' tangential spring energy; 12: the
+/// surface loads' and the blocks' work.)
 const FORMAT: u32 = 12;
 
 /// Why a checkpoint could not be written or resumed.
@@ -371,7 +372,7 @@ fn apply(
         contacts.previous = previous;
     }
     *world.resource_mut::<ContactWork>() = state.contact_work;
-    *world.resource_mut::<LoadWork>() = LoadWork::done(state.load_work);
+    *world.resource_mut::<LoadWork>() = LoadWork::with_work(state.load_work);
     // The records were sized for the whole run when the scene was spawned
     // (recording never allocates in a step): refill them in place.
     refill(

@@ -46,8 +46,8 @@ pub fn write_probes(path: &Path, probes: &Probes) -> std::io::Result<()> {
 /// springs) energies, conserved by free elastic bodies; `balance` adds
 /// gravity's potential, minus the work of the surface loads and of the
 /// blocks, what the contacts dissipated and what damping and the PIC part
-/// took (see
-/// [`crate::resources::EnergySample::balance`] for what it still leaves out).
+/// took (see [`crate::resources::EnergySample::balance`] for what it still
+/// leaves out).
 pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     writeln!(

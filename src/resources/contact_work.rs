@@ -6,10 +6,12 @@ use crate::math::Real;
 use bevy_ecs::prelude::Resource;
 use serde::{Deserialize, Serialize};
 
-/// The work of the point contacts' (point–block and point–point)
-/// tangential forces on the actual relative motion of what they join since
-/// the start of the run (J/m). What it took and their springs do not hold
-/// was dissipated (see [`crate::resources::EnergySample::dissipated`]).
+/// Two works of the point contacts since the start of the run (J/m): that
+/// of their tangential forces (point–block and point–point) on the actual
+/// relative motion of what they join, of which what their springs do not
+/// hold was dissipated (see [`crate::resources::EnergySample::dissipated`]),
+/// and that of the blocks on the points (see
+/// [`crate::resources::EnergySample::blocks`]).
 #[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct ContactWork {
     /// Σ over steps and contacts of f_t · Δ(x_p − x_other), with Δ the
@@ -23,6 +25,7 @@ pub struct ContactWork {
     /// point and Δs the motion over the step of the block's surface point
     /// it touched: the work the blocks did on the bodies (J/m; per radian
     /// in axisymmetry). Moving blocks, kinematic or dynamic, give (or take)
-    /// the bodies' energy through it; a fixed block does none.
+    /// the bodies' energy through it; a fixed block does none (to
+    /// round-off).
     pub block_work: Real,
 }

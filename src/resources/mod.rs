@@ -22,7 +22,7 @@ pub use contact_settings::{BlockContactHistory, BlockContactKey, ContactSettings
 pub use contact_work::ContactWork;
 pub use diagnostics::{Diagnostics, NumericalFailure};
 pub use grid::{EdgeCondition, EdgeConditions, Grid, GridEdge};
-pub use load_work::LoadWork;
+pub use load_work::{LoadWork, LoadedEdge};
 pub use records::{
     BlockLog, BlockPartSample, BlockSample, BodyPairLog, BodyPairSample, EnergyLog, EnergySample,
     Probe, ProbeSample, Probes,

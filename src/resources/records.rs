@@ -92,8 +92,9 @@ pub struct EnergySample {
     /// −Σ m_p g · (x_p − X_p) (J/m), with the gravity of the time.
     pub gravity: Real,
     /// Minus the work the stages' surface tractions have done on the bodies
-    /// since the start (J/m; [`crate::resources::LoadWork`]): for a dead
-    /// load, its potential −F · u.
+    /// since the start (J/m; [`crate::resources::LoadWork`]): in plane
+    /// strain, a dead load's potential −F · u (in axisymmetry the force per
+    /// radian follows the loaded edge's radius).
     pub loads: Real,
     /// Minus the work the blocks have done on the bodies through the point
     /// contacts since the start (J/m; [`crate::resources::ContactWork::block_work`]):
@@ -117,9 +118,8 @@ pub struct EnergySample {
 
 impl EnergySample {
     /// The energies of `bodies` (in scene order) at `time` under `gravity`
-    /// in `geometry`,
-    /// without contacts and damping (`contact`, `dissipated` and `damped`
-    /// zero); `scratch` is reused
+    /// in `geometry`, without contacts, loads and damping (`contact`,
+    /// `loads`, `blocks`, `dissipated` and `damped` zero); `scratch` is reused
     /// between calls (see [`MaterialPoints::energies`]).
     pub fn of<'a>(
         time: Real,

@@ -65,13 +65,18 @@ pub struct Resolution {
     pub angle: Real,
     /// Neo-Hookean disks instead of the scene's material.
     pub neo_hookean: bool,
+    /// Both disks moved along the plane of contact (across the line of
+    /// centres) by this fraction of the point spacing: where the circles
+    /// cut the lattice of points, so the facets at the poles, changes.
+    pub shift: Real,
 }
 
 impl Resolution {
-    /// Cell, points per cell, angle and material, e.g. "cell R/40, 4 pt/cell".
+    /// Cell, points per cell, angle, material and shift, e.g. "cell R/40,
+    /// 4 pt/cell".
     pub fn label(&self) -> String {
         format!(
-            "cell R/{}, {} pt/cell{}{}",
+            "cell R/{}, {} pt/cell{}{}{}",
             self.cells_per_radius,
             self.points_per_cell * self.points_per_cell,
             if self.angle == 0.0 {
@@ -83,6 +88,11 @@ impl Resolution {
                 ", Neo-Hookean"
             } else {
                 ""
+            },
+            if self.shift == 0.0 {
+                String::new()
+            } else {
+                format!(", moved {} spacing along the contact", self.shift)
             }
         )
     }
@@ -106,10 +116,11 @@ impl Resolution {
         let n = (0.05 / h).round() as usize;
         scene.grid.cells = (n, n);
         let along = DVec2::from_angle(self.angle.to_radians());
+        let shift = self.shift * h / Real::from(self.points_per_cell) * along.perp();
         for (body, side) in scene.bodies.iter_mut().zip([-1.0, 1.0]) {
             body.points_per_cell = self.points_per_cell;
             body.shape = Shape::Disk {
-                center: side * RADIUS * along,
+                center: side * RADIUS * along + shift,
                 radius: RADIUS,
             };
             let load = body.acceleration.as_mut().ok_or_else(|| {
@@ -300,6 +311,13 @@ pub const RUNS: [Resolution; 7] = [
     resolution(40, 2, 0.0, true),
 ];
 
+/// The placements of the disks on the lattice sampled for each of the
+/// issue's four resolutions, as (shift along the contact in point
+/// spacings, weight): the scene's, a quarter and half a spacing over. A
+/// shift of ¾ mirrors that of ¼ about the line of centres, hence its
+/// weight 2; a whole spacing gives the scene's lattice again.
+pub const PLACEMENTS: [(Real, Real); 3] = [(0.0, 0.25), (0.25, 0.5), (0.5, 0.25)];
+
 /// Index in [`RUNS`] of the coarsest run (cell R/20, 1 point per cell).
 pub const COARSEST: usize = 0;
 /// Index in [`RUNS`] of the finest run (cell R/40, 2 × 2 points per cell).
@@ -320,6 +338,7 @@ const fn resolution(
         points_per_cell,
         angle,
         neo_hookean,
+        shift: 0.0,
     }
 }
 
@@ -413,7 +432,9 @@ fn by_run(values: &[Real]) -> String {
         .join("; ")
 }
 
-/// The seven runs of [`RUNS`] and the same disks by finite elements, a
+/// The seven runs of [`RUNS`], the four resolutions at the other
+/// [`PLACEMENTS`] ([`placement_study`]), and the same disks by finite
+/// elements, a
 /// measured in the undeformed disks (the half-width Hertz's small-strain
 /// law speaks of; the issue's targets are judged on it) and over the
 /// current positions (reported), and F(a) plotted to
@@ -468,6 +489,7 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
         "falls at each refinement",
         falls,
     ));
+    checks.extend(placement_study(ctx, &base, &errors)?);
     let turned = difference_at_equal_force(undeformed[TURNED], undeformed[FINEST]);
     checks.push(Check::judged(
         "turned 45° against unturned at the finest resolution, F at equal a",
@@ -579,6 +601,55 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
             "the continuum of the same law",
         ));
     }
+    Ok(checks)
+}
+
+/// The issue's four resolutions at the other [`PLACEMENTS`] of the disks
+/// on the lattice (reported): each resolution's error at every placement
+/// and their weighted mean, and whether those means fall with resolution.
+/// `errors` are the runs of [`RUNS`] (the scene's placement).
+fn placement_study(
+    ctx: &Context,
+    base: &Scene,
+    errors: &[(Real, usize)],
+) -> Result<Vec<Check>, VerifyError> {
+    let mut checks = Vec::new();
+    let mut means = Vec::new();
+    for (run, scene_error) in RUNS[..=FINEST].iter().zip(errors) {
+        let mut at = vec![scene_error.0];
+        for &(shift, _) in &PLACEMENTS[1..] {
+            let moved = Resolution { shift, ..*run };
+            at.push(
+                load_to_the_end(ctx, base, moved)?
+                    .undeformed
+                    .hertz_error()
+                    .0,
+            );
+        }
+        let mean: Real = PLACEMENTS.iter().zip(&at).map(|((_, w), e)| w * e).sum();
+        means.push(mean);
+        checks.push(Check::reported(
+            format!(
+                "{}: mean |F/F_Hertz(a) − 1|, a 0.2–0.3 R, the disks moved 0, ¼, ½ spacing along the contact",
+                run.label()
+            ),
+            format!(
+                "{}; weighted mean {:.1}%",
+                at.iter()
+                    .map(|e| format!("{:.1}%", 100.0 * e))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                100.0 * mean
+            ),
+            "the lattice's facets at the poles; ¾ mirrors ¼",
+        ));
+    }
+    let (falls, trend) = falls_with_resolution(&means);
+    checks.push(Check::reported(
+        "the placements' mean error with resolution",
+        format!("{trend}: {}", if falls { "falls" } else { "does not fall" }),
+        "falls at each refinement",
+    ));
     Ok(checks)
 }
 
