@@ -86,6 +86,18 @@ impl std::ops::Add for SymTensor {
     }
 }
 
+impl std::ops::Sub for SymTensor {
+    type Output = Self;
+    fn sub(self, o: Self) -> Self {
+        Self::new(
+            self.xx - o.xx,
+            self.yy - o.yy,
+            self.xy - o.xy,
+            self.zz - o.zz,
+        )
+    }
+}
+
 impl std::ops::AddAssign for SymTensor {
     fn add_assign(&mut self, o: Self) {
         *self = *self + o;

@@ -13,7 +13,9 @@ use rayon::prelude::*;
 
 /// For every point: velocity gradient L_p = Σ_i v_i ⊗ G_ip, deformation
 /// gradient F ← (I + L Δt) F, volume V = det(F) V⁰, stress from the body's
-/// model with D = sym L and W = skew L, strain ε += D Δt. In axisymmetry
+/// model with D = sym L and W = skew L, strain ε += D Δt, and the energy
+/// the model dissipated (per unit volume, times V) added to the point's
+/// inelastic work. In axisymmetry
 /// D_zz is the hoop rate ε̇_θθ = Σ_i S_ip v_i,r / r_p (r_p at x^n under
 /// USF; under USL, which runs after G2P, at x^{n+1}), and the volume
 /// V = det(F) F_θθ V⁰ with F_θθ = exp(ε_θθ), ε_θθ the hoop strain after
@@ -24,7 +26,8 @@ use rayon::prelude::*;
 ///
 /// Reads: `Clock`, `Settings::geometry`, `GridLayer`, `TransferScratch::stencils`, `Material`,
 /// `MaterialPoints` (in axisymmetry position and half-size).
-/// Writes: `MaterialPoints` (deformation gradient, volume, stress, strain).
+/// Writes: `MaterialPoints` (deformation gradient, volume, stress, strain,
+/// inelastic work).
 pub fn update_stress(
     scheme: UpdateScheme,
 ) -> impl FnMut(Res<Clock>, Res<Settings>, Query<StressUpdateData>) {
@@ -84,6 +87,7 @@ impl StrainStep<'_> {
             deformation_gradient,
             stress,
             strain,
+            inelastic_work,
             volume,
             initial_volume,
             position,
@@ -94,7 +98,7 @@ impl StrainStep<'_> {
         (
             deformation_gradient.par_iter_mut(),
             stress.par_iter_mut(),
-            strain.par_iter_mut(),
+            (strain.par_iter_mut(), inelastic_work.par_iter_mut()),
             volume.par_iter_mut(),
             initial_volume.par_iter(),
             stencils.par_iter(),
@@ -102,7 +106,7 @@ impl StrainStep<'_> {
             .into_par_iter()
             .with_min_len(MIN_POINTS_PER_TASK)
             .enumerate()
-            .for_each(|(p, (f, sigma, eps, v, v0, stencil))| {
+            .for_each(|(p, (f, sigma, (eps, dissipated), v, v0, stencil))| {
                 let l = self.velocity_gradient(stencil);
                 *f = (DMat2::IDENTITY + l * self.dt) * *f;
                 let mut d = rate_of_deformation(l);
@@ -129,7 +133,7 @@ impl StrainStep<'_> {
                     f_zz,
                     dt: self.dt,
                 };
-                model.update_stress(sigma, &step);
+                *dissipated += model.update_stress(sigma, &step) * *v;
                 *eps += d * self.dt;
             });
     }

@@ -36,6 +36,8 @@ pub struct PointEnergies {
     pub strain: Real,
     /// −Σ m g · (x − X): gravity's potential relative to the initial positions.
     pub gravity: Real,
+    /// Σ of the points' inelastic work.
+    pub inelastic: Real,
 }
 
 impl std::ops::Add for PointEnergies {
@@ -45,6 +47,7 @@ impl std::ops::Add for PointEnergies {
             kinetic: self.kinetic + o.kinetic,
             strain: self.strain + o.strain,
             gravity: self.gravity + o.gravity,
+            inelastic: self.inelastic + o.inelastic,
         }
     }
 }
@@ -106,6 +109,10 @@ pub struct MaterialPoints {
     pub stress: Vec<SymTensor>,
     /// Accumulated small strain ∫ D dt (logarithmic for straight paths).
     pub strain: Vec<SymTensor>,
+    /// Energy the point's material has dissipated since the start (J/m;
+    /// per radian in axisymmetry): the plastic and viscous work its model
+    /// returned each step (per unit volume) times its volume after the step.
+    pub inelastic_work: Vec<Real>,
     /// External force applied by the user or a system (N/m); not reset by the
     /// engine. Gravity is not included here.
     pub external_force: Vec<DVec2>,
@@ -159,6 +166,7 @@ impl MaterialPoints {
         self.affine_gradient.push(DMat2::ZERO);
         self.stress.push(p.stress);
         self.strain.push(SymTensor::ZERO);
+        self.inelastic_work.push(0.0);
         self.external_force.push(DVec2::ZERO);
         self.half_size.push(p.half_size);
         self.contact_radius.push(p.contact_radius);
@@ -214,6 +222,7 @@ impl MaterialPoints {
                             f_zz(p),
                         ) * self.volume[p],
                     gravity: sum.gravity - self.mass[p] * gravity.dot(self.displacement(p)),
+                    inelastic: sum.inelastic + self.inelastic_work[p],
                 })
             })
             .collect_into_vec(chunk_sums);

@@ -41,29 +41,31 @@ pub fn write_probes(path: &Path, probes: &Probes) -> std::io::Result<()> {
 }
 
 /// Writes `energy.csv`: time, kinetic, strain, contact, total, gravity,
-/// loads, blocks, dissipated, damped, balance (J per metre of thickness).
-/// `total` sums the kinetic, strain and contact (the point contacts'
-/// springs) energies, conserved by free elastic bodies; `balance` adds
-/// gravity's potential, minus the work of the surface loads and of the
-/// blocks, what the contacts dissipated and what damping and the PIC part
-/// took (see [`crate::resources::EnergySample::balance`] for what it still
-/// leaves out).
+/// inelastic, loads, blocks, dissipated, damped, balance (J per metre of
+/// thickness). `total` sums the kinetic, strain and contact (the point
+/// contacts' springs) energies, conserved by free elastic bodies;
+/// `balance` adds gravity's potential, what the materials dissipated, minus
+/// the work of the surface loads and of the blocks, what the contacts
+/// dissipated and what damping and the PIC part took (see
+/// [`crate::resources::EnergySample::balance`] for what it still leaves
+/// out).
 pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     writeln!(
         out,
-        "time,kinetic,strain,contact,total,gravity,loads,blocks,dissipated,damped,balance"
+        "time,kinetic,strain,contact,total,gravity,inelastic,loads,blocks,dissipated,damped,balance"
     )?;
     for s in &energy.samples {
         writeln!(
             out,
-            "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+            "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
             s.time,
             s.kinetic,
             s.strain,
             s.contact,
             s.total(),
             s.gravity,
+            s.inelastic,
             s.loads,
             s.blocks,
             s.dissipated,

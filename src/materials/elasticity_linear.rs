@@ -37,11 +37,24 @@ impl LinearElastic {
         let nu = self.poisson_ratio;
         self.youngs_modulus * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))
     }
+
+    /// a : C⁻¹ : b, C⁻¹ the isotropic compliance in three dimensions (the
+    /// zz components are the out-of-plane or hoop ones): the strain C⁻¹ : b
+    /// has normal parts (b_ii − ν (b_jj + b_kk)) / E and shear part
+    /// (1 + ν) b_xy / E (J/m³ for stresses in Pa).
+    pub fn compliance_product(&self, a: &SymTensor, b: &SymTensor) -> Real {
+        let (e, nu) = (self.youngs_modulus, self.poisson_ratio);
+        let normal = a.xx * (b.xx - nu * (b.yy + b.zz))
+            + a.yy * (b.yy - nu * (b.zz + b.xx))
+            + a.zz * (b.zz - nu * (b.xx + b.yy));
+        (normal + 2.0 * (1.0 + nu) * a.xy * b.xy) / e
+    }
 }
 
 impl ConstitutiveModel for LinearElastic {
+    /// The Jaumann-rate update; dissipates nothing.
     #[inline]
-    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) {
+    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) -> Real {
         let PointStep { d, w, dt, .. } = *step;
         let lambda_tr = self.lame_lambda() * (d.xx + d.yy + d.zz) * dt;
         let two_mu = 2.0 * self.shear_modulus() * dt;
@@ -52,6 +65,7 @@ impl ConstitutiveModel for LinearElastic {
             lambda_tr + two_mu * d.zz,
         );
         *stress += jaumann_rotation(stress, w, dt) + elastic;
+        0.0
     }
 
     fn p_wave_modulus(&self) -> Real {
@@ -61,10 +75,7 @@ impl ConstitutiveModel for LinearElastic {
     /// Complementary energy ½ σ : C⁻¹ : σ, which equals the stored strain
     /// energy for linear elasticity (including any initial stress).
     fn stored_energy_density(&self, s: &SymTensor, _f: &DMat2, _f_zz: Real) -> Real {
-        let (e, nu) = (self.youngs_modulus, self.poisson_ratio);
-        let normal = s.xx * s.xx + s.yy * s.yy + s.zz * s.zz
-            - 2.0 * nu * (s.xx * s.yy + s.yy * s.zz + s.zz * s.xx);
-        normal / (2.0 * e) + (1.0 + nu) / e * s.xy * s.xy
+        0.5 * self.compliance_product(s, s)
     }
 }
 

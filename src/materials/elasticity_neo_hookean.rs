@@ -72,10 +72,12 @@ impl NeoHookean {
 
 impl ConstitutiveModel for NeoHookean {
     /// Sets σ from F^{n+1}; the incoming stress is not read, so an initial
-    /// stress given in a scene is replaced at the first step.
+    /// stress given in a scene is replaced at the first step. Dissipates
+    /// nothing.
     #[inline]
-    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) {
+    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) -> Real {
         *stress = self.stress(&step.f, step.f_zz);
+        0.0
     }
 
     /// λ + 2μ, the tangent at F = I. The tangent stiffens under compression

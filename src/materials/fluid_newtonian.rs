@@ -62,9 +62,10 @@ impl NewtonianFluid {
 
 impl ConstitutiveModel for NewtonianFluid {
     /// σ = 2 μ_w D′ − p I from the step's D and J = det F^{n+1} F_zz (eq. 22);
-    /// the incoming stress is not read.
+    /// the incoming stress is not read. The viscous stress dissipates
+    /// 2 μ_w D′ : D′ Δt per unit volume.
     #[inline]
-    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) {
+    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) -> Real {
         let d = step.d;
         let p = self.pressure(step.f.determinant() * step.f_zz);
         let two_mu = 2.0 * self.viscosity;
@@ -75,6 +76,8 @@ impl ConstitutiveModel for NewtonianFluid {
             two_mu * d.xy,
             two_mu * (d.zz - third_trace) - p,
         );
+        let (_, deviator) = d.mean_and_deviator();
+        two_mu * deviator.contract(&deviator) * step.dt
     }
 
     /// K γ, the tangent dp/d(ln ρ) of eq. 22b at ρ = ρ₀: the sound speed is

@@ -55,8 +55,11 @@ impl PointStep {
 /// the out-of-plane stress in plane strain, the hoop stress in axisymmetry).
 pub trait ConstitutiveModel: Send + Sync {
     /// Advances `stress` over one step (objective: rate-form models rotate
-    /// with the spin, hyperelastic ones compute σ from F).
-    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep);
+    /// with the spin, hyperelastic ones compute σ from F) and returns the
+    /// energy the step dissipated per unit current volume (J/m³): plastic
+    /// work, viscous work; zero for the elastic models. What the stress's
+    /// work on the step's strain stores is in [`Self::stored_energy_density`].
+    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) -> Real;
 
     /// The constrained (P-wave) modulus λ + 2μ, which sets the elastic wave
     /// speed for the time-step (CFL) limit.
@@ -81,10 +84,15 @@ pub trait ElasticPlastic: Send + Sync {
 }
 
 impl<T: ElasticPlastic> ConstitutiveModel for T {
-    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) {
+    /// The elastic trial, the return, and the plastic work of the return,
+    /// σ^{n+1} : Δε_p with Δε_p = C⁻¹ : (σ_trial − σ^{n+1}) (the strain the
+    /// return took out of the elastic part).
+    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) -> Real {
+        let elastic = self.elastic();
         let mut trial = *stress;
-        self.elastic().update_stress(&mut trial, step);
+        elastic.update_stress(&mut trial, step);
         *stress = self.return_map(trial);
+        elastic.compliance_product(stress, &(trial - *stress))
     }
 
     fn p_wave_modulus(&self) -> Real {

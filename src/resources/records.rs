@@ -91,6 +91,10 @@ pub struct EnergySample {
     /// Gravity's potential relative to the initial positions,
     /// −Σ m_p g · (x_p − X_p) (J/m), with the gravity of the time.
     pub gravity: Real,
+    /// Energy the bodies' materials have dissipated since the start (J/m):
+    /// plastic work (Mohr–Coulomb, Drucker–Prager) and viscous work (the
+    /// fluid), [`crate::components::MaterialPoints::inelastic_work`].
+    pub inelastic: Real,
     /// Minus the work the stages' surface tractions have done on the bodies
     /// since the start (J/m; [`crate::resources::LoadWork`]): in plane
     /// strain, a dead load's potential −F · u (in axisymmetry the force per
@@ -118,8 +122,9 @@ pub struct EnergySample {
 
 impl EnergySample {
     /// The energies of `bodies` (in scene order) at `time` under `gravity`
-    /// in `geometry`, without contacts, loads and damping (`contact`,
-    /// `loads`, `blocks`, `dissipated` and `damped` zero); `scratch` is reused
+    /// in `geometry` (with what their materials dissipated), without
+    /// contacts, loads and damping (`contact`, `loads`, `blocks`,
+    /// `dissipated` and `damped` zero); `scratch` is reused
     /// between calls (see [`MaterialPoints::energies`]).
     pub fn of<'a>(
         time: Real,
@@ -137,6 +142,7 @@ impl EnergySample {
             strain: sum.strain,
             contact: 0.0,
             gravity: sum.gravity,
+            inelastic: sum.inelastic,
             loads: 0.0,
             blocks: 0.0,
             dissipated: 0.0,
@@ -151,14 +157,22 @@ impl EnergySample {
         self.kinetic + self.strain + self.contact
     }
 
-    /// Total + gravity's potential + minus the work of the surface loads
-    /// and of the blocks + what the contacts dissipated + what damping and
-    /// the PIC part took (J/m): constant for elastic bodies under constant
-    /// gravity, touching each other and blocks, up to the MPM scheme's own
-    /// error. It leaves out the work of the contacts' normal dashpots and
-    /// of the grid's boundaries, and the blocks' own energy.
+    /// Total + gravity's potential + what the materials dissipated + minus
+    /// the work of the surface loads and of the blocks + what the contacts
+    /// dissipated + what damping and the PIC part took (J/m): constant for
+    /// bodies under constant gravity, touching each other and blocks, up to
+    /// the MPM scheme's own error (for plastic bodies, that of taking the
+    /// plastic work with the stress after the return). It leaves out the
+    /// work of the contacts' normal dashpots and of the grid's boundaries,
+    /// and the blocks' own energy.
     pub fn balance(&self) -> Real {
-        self.total() + self.gravity + self.loads + self.blocks + self.dissipated + self.damped
+        self.total()
+            + self.gravity
+            + self.inelastic
+            + self.loads
+            + self.blocks
+            + self.dissipated
+            + self.damped
     }
 }
 
