@@ -251,7 +251,9 @@ impl Simulation {
     /// volume, stress and strain, body by body in scene order; each block's
     /// pose and velocity in scene order; and the clock's step. (Columns a
     /// step does not evolve, such as mass and initial position, are left
-    /// out.) Equal hashes mean bit-identical states.
+    /// out, and so are the records of what happened, such as the points'
+    /// inelastic work, which no step reads back.) Equal hashes mean
+    /// bit-identical states.
     pub fn state_hash(&mut self) -> u64 {
         let mut hasher = StateHasher::default();
         let clock = self.clock();

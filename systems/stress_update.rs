@@ -14,8 +14,8 @@ use rayon::prelude::*;
 /// For every point: velocity gradient L_p = Σ_i v_i ⊗ G_ip, deformation
 /// gradient F ← (I + L Δt) F, volume V = det(F) V⁰, stress from the body's
 /// model with D = sym L and W = skew L, strain ε += D Δt, and the energy
-/// the model dissipated (per unit volume, times V) added to the point's
-/// inelastic work. In axisymmetry
+/// the model dissipated (per unit volume, times V^{n+1}) added to the
+/// point's inelastic work. In axisymmetry
 /// D_zz is the hoop rate ε̇_θθ = Σ_i S_ip v_i,r / r_p (r_p at x^n under
 /// USF; under USL, which runs after G2P, at x^{n+1}), and the volume
 /// V = det(F) F_θθ V⁰ with F_θθ = exp(ε_θθ), ε_θθ the hoop strain after

@@ -1,6 +1,6 @@
-//! The energy balance with what works on the bodies from outside: the
+//! The energy balance with what works on the bodies from outside, the
 //! stages' surface loads (`energy.csv`'s `loads`) and the blocks, moved or
-//! moving (`blocks`).
+//! moving (`blocks`), and with what the materials dissipate (`inelastic`).
 
 mod common;
 

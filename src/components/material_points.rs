@@ -36,7 +36,7 @@ pub struct PointEnergies {
     pub strain: Real,
     /// −Σ m g · (x − X): gravity's potential relative to the initial positions.
     pub gravity: Real,
-    /// Σ of the points' inelastic work.
+    /// Σ of the points' inelastic work (what their material dissipated).
     pub inelastic: Real,
 }
 
@@ -189,9 +189,10 @@ impl MaterialPoints {
         self.mass.iter().sum()
     }
 
-    /// Kinetic energy Σ ½ m |V|², stored strain energy Σ w(σ) V and the
+    /// Kinetic energy Σ ½ m |V|², stored strain energy Σ w(σ) V, the
     /// change of gravity's potential since the points were placed,
-    /// −Σ m g · (x − X) (J/m).
+    /// −Σ m g · (x − X), and the inelastic work the materials dissipated
+    /// (J/m).
     /// Points are summed in fixed chunks of [`CHUNK_POINTS`] in parallel and
     /// the chunk sums added in order, so the result never depends on the
     /// thread count.

@@ -298,11 +298,12 @@ impl RunOutput {
         let pick = |f: fn(&crate::resources::EnergySample) -> Real| -> Vec<(Real, Real)> {
             energy.samples.iter().map(|s| (s.time, f(s))).collect()
         };
-        let (kinetic, strain, contact, total, balance) = (
+        let (kinetic, strain, contact, total, inelastic, balance) = (
             pick(|s| s.kinetic),
             pick(|s| s.strain),
             pick(|s| s.contact),
             pick(|s| s.total()),
+            pick(|s| s.inelastic),
             pick(|s| s.balance()),
         );
         self.folder.write_file("energy.png", |path| {
@@ -333,7 +334,12 @@ impl RunOutput {
                         style: SeriesStyle::Line,
                     },
                     Series {
-                        name: "total + gravity + dissipated + damped",
+                        name: "inelastic",
+                        points: &inelastic,
+                        style: SeriesStyle::Line,
+                    },
+                    Series {
+                        name: "balance",
                         points: &balance,
                         style: SeriesStyle::Line,
                     },

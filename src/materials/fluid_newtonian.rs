@@ -126,6 +126,26 @@ mod tests {
     }
 
     #[test]
+    fn the_viscous_stress_dissipates_its_work_on_the_rate() {
+        // What the step returns is the viscous stress's work σ_v : D Δt,
+        // σ_v = σ + p I = 2 μ D′ (the pressure's work is the equation of
+        // state's, stored), here with a hoop rate D_zz as in axisymmetry.
+        let d = SymTensor::new(30.0, -10.0, 25.0, 5.0);
+        let at = step(d, 0.99);
+        let mut s = SymTensor::ZERO;
+        let dissipated = WATER.update_stress(&mut s, &at);
+        let p = WATER.pressure(0.99);
+        let viscous = SymTensor::new(s.xx + p, s.yy + p, s.xy, s.zz + p);
+        let work = viscous.contract(&d) * at.dt;
+        // One product against another of the same terms: 1e-12 relative.
+        assert!(work > 0.0);
+        assert!(
+            (dissipated - work).abs() < 1e-12 * work,
+            "{dissipated} vs {work}"
+        );
+    }
+
+    #[test]
     fn pressure_follows_the_density() {
         // J = 0.99 (ρ/ρ₀ = 1/0.99): p = K (0.99^−7 − 1) ≈ 2.19 kPa.
         // One powf against the same closed form: 1e-12 relative.

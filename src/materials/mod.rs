@@ -56,7 +56,8 @@ impl PointStep {
 pub trait ConstitutiveModel: Send + Sync {
     /// Advances `stress` over one step (objective: rate-form models rotate
     /// with the spin, hyperelastic ones compute σ from F) and returns the
-    /// energy the step dissipated per unit current volume (J/m³): plastic
+    /// energy the step dissipated per unit volume at the step's end
+    /// (J/m³): plastic
     /// work, viscous work; zero for the elastic models. What the stress's
     /// work on the step's strain stores is in [`Self::stored_energy_density`].
     fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) -> Real;
@@ -74,7 +75,8 @@ pub trait ConstitutiveModel: Send + Sync {
 /// A plasticity model on a linear elastic predictor: the elastic trial
 /// stress (Jaumann rate), then the model's return to its admissible set.
 /// Such a model is a [`ConstitutiveModel`] through this trait, with the
-/// elastic part's wave speed and stored energy.
+/// elastic part's wave speed and stored energy, and the return's plastic
+/// work as what a step dissipates.
 pub trait ElasticPlastic: Send + Sync {
     /// The elastic part.
     fn elastic(&self) -> LinearElastic;
@@ -129,6 +131,17 @@ impl MaterialModel {
             Self::MohrCoulomb(m) => m.check(),
             Self::DruckerPrager(m) => m.check(),
             Self::NewtonianFluid(m) => m.check(),
+        }
+    }
+
+    /// Whether `stress` is admissible for the model: inside (or on) the
+    /// yield surface of the plastic models, which return it unchanged;
+    /// always for the others.
+    pub fn admits(&self, stress: &SymTensor) -> bool {
+        match self {
+            Self::MohrCoulomb(m) => m.return_map(*stress) == *stress,
+            Self::DruckerPrager(m) => m.return_map(*stress) == *stress,
+            _ => true,
         }
     }
 

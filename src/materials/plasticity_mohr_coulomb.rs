@@ -1096,7 +1096,7 @@ mod tests {
         }
         let residual = work - (stored(&s) - start) - plastic;
         println!(
-            "work {work:.2} J/m3, stored {:.2}, plastic {plastic:.2}",
+            "work {work:.2} J/m3, stored {:.2}, plastic {plastic:.2}, residual {residual:e}",
             stored(&s) - start
         );
         assert!(

@@ -52,6 +52,19 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
             })?;
         let points = fill_body(scene, spec, material.density)
             .map_err(|e| invalid(format!("body '{}': {e}", spec.name)))?;
+        let outside = points
+            .stress
+            .iter()
+            .filter(|s| !material.model.admits(s))
+            .count();
+        if outside > 0 {
+            warnings.push(format!(
+                "body '{}': the initial stress of {outside} of its {} points lies outside the yield surface of material '{}' (a `k0` below its active or above its passive ratio?): the first step returns them to it, and energy.csv's balance misses part of that return's energy",
+                spec.name,
+                points.len(),
+                material.name
+            ));
+        }
         let lightest = points.mass.iter().copied().fold(Real::INFINITY, Real::min);
         let entity = world
             .spawn((
