@@ -133,7 +133,10 @@ impl StrainStep<'_> {
                     f_zz,
                     dt: self.dt,
                 };
-                *dissipated += model.update_stress(sigma, &step) * *v;
+                let dissipation = model.update_stress(sigma, &step);
+                if M::dissipates() {
+                    *dissipated += dissipation * *v;
+                }
                 *eps += d * self.dt;
             });
     }

@@ -68,6 +68,10 @@ impl ConstitutiveModel for LinearElastic {
         0.0
     }
 
+    fn dissipates() -> bool {
+        false
+    }
+
     fn p_wave_modulus(&self) -> Real {
         self.lame_lambda() + 2.0 * self.shear_modulus()
     }

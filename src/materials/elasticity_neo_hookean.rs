@@ -80,6 +80,10 @@ impl ConstitutiveModel for NeoHookean {
         0.0
     }
 
+    fn dissipates() -> bool {
+        false
+    }
+
     /// λ + 2μ, the tangent at F = I. The tangent stiffens under compression
     /// (J < 1), so the time step needs the usual CFL safety factor.
     fn p_wave_modulus(&self) -> Real {

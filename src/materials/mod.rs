@@ -62,6 +62,16 @@ pub trait ConstitutiveModel: Send + Sync {
     /// work on the step's strain stores is in [`Self::stored_energy_density`].
     fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) -> Real;
 
+    /// Whether the model can dissipate (return other than zero from
+    /// [`Self::update_stress`]); the stress update keeps no account for
+    /// those that cannot (a store per point and step saved).
+    fn dissipates() -> bool
+    where
+        Self: Sized,
+    {
+        true
+    }
+
     /// The constrained (P-wave) modulus λ + 2μ, which sets the elastic wave
     /// speed for the time-step (CFL) limit.
     fn p_wave_modulus(&self) -> Real;
