@@ -159,14 +159,14 @@ pub const CASES: &[Case] = &[
         name: "pile_penetration",
         source: "paper 4.3",
         about: "pile driven into Mohr–Coulomb sand: the cone resistance q_c",
-        minutes: 8.5,
+        minutes: 6.0,
         run: pile::run,
     },
     Case {
         name: "pile_penetration_axisymmetric",
         source: "paper 4.3, axisymmetric",
         about: "the same pile and sand axisymmetric, Susila and Hryciw's geometry: q_c = 2 f_c / R²",
-        minutes: 4.5,
+        minutes: 6.5,
         run: pile::run_axisymmetric,
     },
     Case {
