@@ -57,9 +57,9 @@ pub trait ConstitutiveModel: Send + Sync {
     /// Advances `stress` over one step (objective: rate-form models rotate
     /// with the spin, hyperelastic ones compute σ from F) and returns the
     /// energy the step dissipated per unit volume at the step's end
-    /// (J/m³): plastic
-    /// work, viscous work; zero for the elastic models. What the stress's
-    /// work on the step's strain stores is in [`Self::stored_energy_density`].
+    /// (J/m³): plastic work, viscous work; zero for the elastic models.
+    /// What the stress's work on the step's strain stores is in
+    /// [`Self::stored_energy_density`].
     fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) -> Real;
 
     /// Whether the model can dissipate (return other than zero from
