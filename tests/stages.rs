@@ -204,6 +204,14 @@ fn bad_stages_are_refused() {
     scene.stages[1].remove_blocks.push("pile".into());
     let message = common::refusal(&scene);
     assert!(message.contains("unknown block 'pile'"), "{message}");
+    let mut scene = base.clone();
+    let twice = scene.stages[1].tractions[0].clone();
+    scene.stages[1].tractions.push(twice);
+    let message = common::refusal(&scene);
+    assert!(
+        message.contains("loaded twice on its Top side"),
+        "{message}"
+    );
     let mut scene = base;
     scene.stages[1].name = "geostatic".into();
     let message = common::refusal(&scene);

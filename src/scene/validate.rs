@@ -730,7 +730,19 @@ impl Scene {
                     return Err(fail("block_velocities", "velocity must be finite".into()));
                 }
             }
-            for traction in &stage.tractions {
+            for (k, traction) in stage.tractions.iter().enumerate() {
+                if stage.tractions[..k]
+                    .iter()
+                    .any(|t| t.body == traction.body && t.side == traction.side)
+                {
+                    return Err(fail(
+                        "tractions",
+                        format!(
+                            "body '{}' is loaded twice on its {:?} side in this stage: one traction per body and side (the last would replace the first)",
+                            traction.body, traction.side
+                        ),
+                    ));
+                }
                 if !self.bodies.iter().any(|b| b.name == traction.body) {
                     return Err(fail(
                         "tractions",
