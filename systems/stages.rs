@@ -2,13 +2,13 @@
 //! it (after its duration, or once the model has settled).
 
 use crate::components::{
-    BlockId, BodyName, MaterialPoints, RigidMass, RigidMotion, RigidVelocity,
+    BlockContacts, BlockId, BodyName, MaterialPoints, RigidMass, RigidMotion, RigidVelocity,
     bodies_in_scene_order, sort_into_scene_order,
 };
 use crate::math::{DVec2, Real};
 use crate::resources::{
-    AppliedLoad, Clock, Geometry, Gravity, Grid, Settings, StageEndReason, StageLog, StagePlan,
-    StageRecord,
+    AppliedLoad, Clock, ContactWork, Geometry, Gravity, Grid, Settings, StageEndReason, StageLog,
+    StagePlan, StageRecord,
 };
 use crate::scene::{Side, StageEnd, spawn_block};
 use bevy_ecs::prelude::*;
@@ -212,6 +212,7 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
     }
     for name in &spec.remove_blocks {
         if let Some(entity) = block_named(world, name) {
+            take_springs_along(world, entity);
             world.despawn(entity);
         }
     }
@@ -357,6 +358,24 @@ pub fn side_points(points: &MaterialPoints, side: Side) -> Vec<(u32, Real)> {
         .into_iter()
         .map(|(p, count)| (p, Real::from(count) * strip))
         .collect()
+}
+
+/// Books the energy in the springs of a block about to be removed as taken
+/// by the block (`ContactWork::block_work`), so that `energy.csv`'s balance
+/// does not jump when its contacts vanish: the springs' whole energy as
+/// the block's negative work, and their tangential part back out of the
+/// tangential work, where `dissipated` would otherwise count it as released.
+fn take_springs_along(world: &mut World, block: Entity) {
+    let Some(contacts) = world.get::<BlockContacts>(block) else {
+        return;
+    };
+    let (whole, tangential) = contacts.current.iter().fold((0.0, 0.0), |(w, t), c| {
+        (w + c.potential, t + c.tangential_potential)
+    });
+    if let Some(mut work) = world.get_resource_mut::<ContactWork>() {
+        work.block_work -= whole;
+        work.tangential_work += tangential;
+    }
 }
 
 fn block_named(world: &mut World, name: &str) -> Option<Entity> {

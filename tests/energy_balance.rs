@@ -319,3 +319,48 @@ fn under_particle_damping_remapped_points_settle_with_their_strain() {
     );
     assert!((work / 80.0 - 1.0).abs() < 0.01, "work {work}");
 }
+
+#[test]
+fn a_block_a_stage_removes_takes_its_springs_energy_along() {
+    // The punch pressed 1.5 mm into the pad (with friction, so that its
+    // tangential springs hold energy too), then removed by a stage: the
+    // contact springs' energy vanishes from `contact`, and the `blocks`
+    // column books it as taken by the block, so the balance does not jump.
+    let scene = pad(
+        &elastic(0.3),
+        "position_update: Remapped",
+        "(name: \"punch\", shape: Cuboid(half_extents: (0.1, 0.05)), position: (0.2, 0.25),
+          motion: Kinematic((linear: (0.0, -0.05), angular: 0.1)),
+          contact: (normal_stiffness: 1e7, tangential_stiffness: 1e7, friction: 0.3))",
+        "(name: \"press\", end: Duration(0.03)),
+         (name: \"release\", end: Duration(0.01), remove_blocks: [\"punch\"])",
+        0.04,
+    );
+    let sim = common::run_scene(&scene);
+    let energy = &sim.world().resource::<EnergyLog>().samples;
+    // The sample at the removal (the stage change at 0.03 s) and the one
+    // before it.
+    let at = energy
+        .iter()
+        .position(|s| s.time >= 0.03 - 1e-9)
+        .expect("the removal is sampled");
+    let (before, after) = (energy[at - 1], energy[at]);
+    let jump = after.balance() - before.balance();
+    let step = before.balance() - energy[at - 2].balance();
+    println!(
+        "removal: contact {:.4} -> {:.4} J/m, blocks {:.4} -> {:.4}; balance step {jump:.3e} \
+         (the step before {step:.3e})",
+        before.contact, after.contact, before.blocks, after.blocks
+    );
+    assert!(
+        before.contact > 1.0 && after.contact == 0.0,
+        "the springs held energy"
+    );
+    // The balance moves at the removal as on any step (the scheme's
+    // error, 1e-4 of the springs' energy a step here), not by the springs'
+    // energy: within 1% of it.
+    assert!(
+        jump.abs() < 0.01 * before.contact,
+        "balance jumps by {jump}"
+    );
+}

@@ -26,6 +26,7 @@ pub struct ContactWork {
     /// it touched: the work the blocks did on the bodies (J/m; per radian
     /// in axisymmetry). Moving blocks, kinematic or dynamic, give (or take)
     /// the bodies' energy through it; a fixed block does none (to
-    /// round-off).
+    /// round-off). A block a stage removes takes its springs' energy
+    /// along (`systems::enter_stage`).
     pub block_work: Real,
 }
