@@ -125,6 +125,12 @@ fn work_from_block_log(log: &BlockLog) -> f64 {
         .sum()
 }
 
+/// A kinematic punch 0.2 m wide whose disks touch the pad's top points',
+/// driven down at 0.05 m/s while it turns at 0.1 rad/s, μ = 0.3.
+const TURNING_PUNCH: &str = "(name: \"punch\", shape: Cuboid(half_extents: (0.1, 0.05)),
+    position: (0.2, 0.25), motion: Kinematic((linear: (0.0, -0.05), angular: 0.1)),
+    contact: (normal_stiffness: 1e7, tangential_stiffness: 1e7, friction: 0.3))";
+
 #[test]
 fn a_punch_driven_into_the_pad_is_counted_by_its_work() {
     // A kinematic punch 0.2 m wide, touching the pad's top points' disks,
@@ -135,9 +141,7 @@ fn a_punch_driven_into_the_pad_is_counted_by_its_work() {
     let scene = pad(
         &elastic(0.3),
         "position_update: Remapped",
-        "(name: \"punch\", shape: Cuboid(half_extents: (0.1, 0.05)), position: (0.2, 0.25),
-          motion: Kinematic((linear: (0.0, -0.05), angular: 0.1)),
-          contact: (normal_stiffness: 1e7, tangential_stiffness: 1e7, friction: 0.3))",
+        TURNING_PUNCH,
         "",
         0.03,
     );
@@ -329,9 +333,7 @@ fn a_block_a_stage_removes_takes_its_springs_energy_along() {
     let scene = pad(
         &elastic(0.3),
         "position_update: Remapped",
-        "(name: \"punch\", shape: Cuboid(half_extents: (0.1, 0.05)), position: (0.2, 0.25),
-          motion: Kinematic((linear: (0.0, -0.05), angular: 0.1)),
-          contact: (normal_stiffness: 1e7, tangential_stiffness: 1e7, friction: 0.3))",
+        TURNING_PUNCH,
         "(name: \"press\", end: Duration(0.03)),
          (name: \"release\", end: Duration(0.01), remove_blocks: [\"punch\"])",
         0.04,
