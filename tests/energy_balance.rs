@@ -36,6 +36,16 @@ fn elastic(poisson: f64) -> String {
     format!("LinearElastic((youngs_modulus: 1e7, poisson_ratio: {poisson}))")
 }
 
+/// The pad's top row's mean settlement (m), at its points' centres, half a
+/// spacing (5 mm) below the loaded surface.
+fn top_settlement(points: &MaterialPoints) -> f64 {
+    let top: Vec<f64> = (0..points.len())
+        .filter(|&p| points.initial_position[p].y > 0.19)
+        .map(|p| points.initial_position[p].y - points.position[p].y)
+        .collect();
+    top.iter().sum::<f64>() / top.len() as f64
+}
+
 /// The widest swing of the balance over the run.
 fn balance_swing(samples: &[EnergySample]) -> f64 {
     let first = samples[0].balance();
@@ -63,13 +73,7 @@ fn a_surcharge_s_work_closes_the_balance() {
     let energy = sim.world().resource::<EnergyLog>().samples.clone();
     let last = *energy.last().expect("samples");
     let points = sim.points_of("pad").expect("pad");
-    // The top row's mean settlement, at its points' centres, half a
-    // spacing (5 mm) below the loaded surface.
-    let top: Vec<f64> = (0..points.len())
-        .filter(|&p| points.initial_position[p].y > 0.19)
-        .map(|p| points.initial_position[p].y - points.position[p].y)
-        .collect();
-    let settlement = top.iter().sum::<f64>() / top.len() as f64;
+    let settlement = top_settlement(points);
     // The surface settles by u = p H / E = 2 mm; the loads' work p L u.
     let (pressure, width, height, modulus) = (1e5, 0.4, 0.2, 1e7);
     let exact = pressure * width * pressure * height / modulus;
@@ -303,12 +307,7 @@ fn under_particle_damping_remapped_points_settle_with_their_strain() {
             .last()
             .expect("samples")
             .loads;
-        let points = sim.points_of("pad").expect("pad");
-        let top: Vec<f64> = (0..points.len())
-            .filter(|&p| points.initial_position[p].y > 0.19)
-            .map(|p| points.initial_position[p].y - points.position[p].y)
-            .collect();
-        (top.iter().sum::<f64>() / top.len() as f64, -loads)
+        (top_settlement(sim.points_of("pad").expect("pad")), -loads)
     };
     let (remapped, work) = settled("Remapped");
     let (midpoint, _) = settled("Midpoint");

@@ -49,7 +49,7 @@ impl NeoHookean {
     }
 
     /// The Cauchy stress for the in-plane deformation gradient `f` and the
-    /// out-of-plane stretch `f_zz` (1 in plane strain, r / R in
+    /// out-of-plane stretch `f_zz` (1 in plane strain, the hoop stretch in
     /// axisymmetry): σ = μ/J (b − I) + λ ln J / J I, J = det(f) f_zz,
     /// b_zz = f_zz². An inverted point (J ≤ 0) gives a non-finite stress,
     /// which the engine's finiteness check reports.
