@@ -5,7 +5,7 @@ use crate::components::{
 };
 use crate::materials::{ConstitutiveModel, MaterialModel, PointStep};
 use crate::math::{DMat2, DVec2, Real, outer, rate_of_deformation, spin};
-use crate::resources::{Clock, Geometry, Settings, UpdateScheme};
+use crate::resources::{Clock, Geometry, PositionUpdate, Settings, UpdateScheme};
 use crate::shape_functions::Stencil;
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -20,11 +20,23 @@ use rayon::prelude::*;
 /// USF; under USL, which runs after G2P, at x^{n+1}), and the volume
 /// V = det(F) F_θθ V⁰ with F_θθ = exp(ε_θθ), ε_θθ the hoop strain after
 /// the step. USF uses the nodal
-/// velocity at the start of the step, USL the updated one; both with the
-/// gradients at x^n. The scheme is fixed here, with the order of the sets,
-/// when the schedule is built.
+/// velocity at the start of the step, USL the updated one, and USL with
+/// `PositionUpdate::Remapped` (MUSL) the points' new velocities mapped back
+/// to the nodes, the field that moved them; all with the gradients at x^n.
+/// The scheme is fixed here, with the order of the sets, when the schedule
+/// is built.
 ///
-/// Reads: `Clock`, `Settings::geometry`, `GridLayer`, `TransferScratch::stencils`, `Material`,
+/// USL with the updated nodal velocity dissipates: the strain follows the
+/// whole change of the nodal velocity, but the points keep only what the
+/// map to the points and back returns to the next step's nodes (for FLIP
+/// M_L⁻¹ M_C, the consistent mass matrix over the lumped one, which keeps
+/// smooth modes and damps those the lattice resolves poorly). For a mode
+/// of frequency ω that the map keeps a fraction λ of, a step multiplies
+/// its phase-space area by 1 − (1 − λ)(ωΔt)²; MUSL's strain follows what
+/// the points keep, and the area stays.
+///
+/// Reads: `Clock`, `Settings::geometry` and `position_update`, `GridLayer`,
+/// `TransferScratch::stencils` and `remap` (MUSL), `Material`,
 /// `MaterialPoints` (in axisymmetry position and half-size).
 /// Writes: `MaterialPoints` (deformation gradient, volume, stress, strain,
 /// inelastic work).
@@ -34,14 +46,19 @@ pub fn update_stress(
     let after_momentum = scheme == UpdateScheme::Usl;
     move |clock, settings, mut bodies| {
         let geometry = settings.geometry;
+        let remapped = settings.position_update == PositionUpdate::Remapped;
         for (material, mut points, layer, scratch) in &mut bodies {
             let window = layer.window();
+            let velocity = match (after_momentum, remapped) {
+                (false, _) => StrainVelocity::Mapped(layer.nodes()),
+                (true, false) => StrainVelocity::Updated(layer.nodes()),
+                (true, true) => StrainVelocity::Remapped(&scratch.remap.current),
+            };
             let step = StrainStep {
-                nodes: layer.nodes(),
+                velocity,
                 origin: window.start.map(|k| k as u32),
                 row_len: window.width(),
                 dt: clock.dt,
-                after_momentum,
                 geometry,
             };
             match &material.model {
@@ -63,16 +80,28 @@ type StressUpdateData = (
     &'static TransferScratch,
 );
 
+/// The nodal velocity field the strain rate follows.
+#[derive(Clone, Copy)]
+enum StrainVelocity<'a> {
+    /// USF: v^n, mapped from the points at the start of the step.
+    Mapped(&'a [GridNode]),
+    /// USL: v^{n+1}, the nodal solve's.
+    Updated(&'a [GridNode]),
+    /// MUSL (USL with `PositionUpdate::Remapped`): ṽ, the points' new
+    /// velocities mapped back to the nodes by G2P
+    /// (`TransferScratch::remap.current`, one per stored node).
+    Remapped(&'a [DVec2]),
+}
+
 /// What the stress update of one body reads from its layer.
 struct StrainStep<'a> {
-    /// The layer's stored nodes.
-    nodes: &'a [GridNode],
+    /// The nodal velocities, laid out as the layer's stored nodes.
+    velocity: StrainVelocity<'a>,
     /// The grid node of the first stored node.
     origin: [u32; 2],
     /// Stored nodes per row.
     row_len: usize,
     dt: Real,
-    after_momentum: bool,
     geometry: Geometry,
 }
 
@@ -144,34 +173,35 @@ impl StrainStep<'_> {
     /// The radial velocity at the point, Σ_i S_ip v_i,r (axisymmetry).
     #[inline(always)]
     fn radial_velocity(&self, stencil: &Stencil) -> Real {
-        stencil.gather(
-            self.nodes,
-            self.origin,
-            self.row_len,
-            0.0,
-            |u, node, w, _| u + w * self.nodal_velocity(node).x,
-        )
-    }
-
-    /// The nodal velocity the strain rate follows: v^n under USF, v^{n+1}
-    /// under USL.
-    #[inline(always)]
-    fn nodal_velocity(&self, node: &GridNode) -> DVec2 {
-        if self.after_momentum {
-            node.velocity_new
-        } else {
-            node.velocity
+        let (o, n) = (self.origin, self.row_len);
+        let radial = |u: Real, v: DVec2, w: Real| u + w * v.x;
+        match self.velocity {
+            StrainVelocity::Mapped(nodes) => stencil.gather(nodes, o, n, 0.0, |u, node, w, _| {
+                radial(u, node.velocity, w)
+            }),
+            StrainVelocity::Updated(nodes) => stencil.gather(nodes, o, n, 0.0, |u, node, w, _| {
+                radial(u, node.velocity_new, w)
+            }),
+            StrainVelocity::Remapped(v) => {
+                stencil.gather(v, o, n, 0.0, |u, v, w, _| radial(u, *v, w))
+            }
         }
     }
 
+    /// L_p = Σ_i v_i ⊗ G_ip of the field the strain rate follows.
     #[inline(always)]
     fn velocity_gradient(&self, stencil: &Stencil) -> DMat2 {
-        stencil.gather(
-            self.nodes,
-            self.origin,
-            self.row_len,
-            DMat2::ZERO,
-            |l, node, _, g| l + outer(self.nodal_velocity(node), g),
-        )
+        let (o, n, zero) = (self.origin, self.row_len, DMat2::ZERO);
+        match self.velocity {
+            StrainVelocity::Mapped(nodes) => stencil.gather(nodes, o, n, zero, |l, node, _, g| {
+                l + outer(node.velocity, g)
+            }),
+            StrainVelocity::Updated(nodes) => stencil.gather(nodes, o, n, zero, |l, node, _, g| {
+                l + outer(node.velocity_new, g)
+            }),
+            StrainVelocity::Remapped(v) => {
+                stencil.gather(v, o, n, zero, |l, v, _, g| l + outer(*v, g))
+            }
+        }
     }
 }
