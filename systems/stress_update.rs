@@ -30,10 +30,13 @@ use rayon::prelude::*;
 /// whole change of the nodal velocity, but the points keep only what the
 /// map to the points and back returns to the next step's nodes (for FLIP
 /// M_L⁻¹ M_C, the consistent mass matrix over the lumped one, which keeps
-/// smooth modes and damps those the lattice resolves poorly). For a mode
-/// of frequency ω that the map keeps a fraction λ of, a step multiplies
-/// its phase-space area by 1 − (1 − λ)(ωΔt)²; MUSL's strain follows what
-/// the points keep, and the area stays.
+/// smooth modes and damps those the lattice resolves poorly). In a model
+/// of one mode of frequency ω that the map keeps a fraction λ of (taking
+/// the mode to be one of both the stiffness and the map), a step
+/// multiplies its phase-space area by 1 − (1 − λ)(ωΔt)²; MUSL's strain
+/// follows what the points keep, and under FLIP without damping the area
+/// stays (with a PIC fraction both lose what PIC takes, which the energy
+/// balance counts as `damped`).
 ///
 /// Reads: `Clock`, `Settings::geometry` and `position_update`, `GridLayer`,
 /// `TransferScratch::stencils` and `remap` (MUSL), `Material`,

@@ -170,7 +170,9 @@ fn under_usl_the_thick_cylinder_follows_lame_too() {
     // USL updates the stress after G2P has moved the points: the hoop
     // stretch is then taken at x^{n+1}. The same tolerances, with the
     // strain rate from the nodal solve's velocity and from the remapped
-    // one (MUSL, whose hoop rate reads the remapped radial velocity).
+    // one (MUSL, whose hoop rate reads the remapped radial velocity). The
+    // case is quasi-static, so it cannot tell the two velocities apart:
+    // for MUSL it checks that the branch runs and settles where Lamé says.
     lame_errors("scheme: Usl, position_update: Forward").assert_within_tolerances();
     lame_errors("scheme: Usl, position_update: Remapped").assert_within_tolerances();
 }
@@ -553,13 +555,19 @@ fn a_left_traction_on_the_axis_is_warned_of_and_one_off_it_loads() {
 /// about 14 ms at E = 1e7 Pa). Returns the largest change of their sum and
 /// the least kinetic energy, as fractions of the start.
 fn breathing(model: &str, a: Real) -> (Real, Real) {
+    breathing_under(model, a, "")
+}
+
+/// [`breathing`] with more `settings` (RON fields, each followed by a
+/// comma).
+fn breathing_under(model: &str, a: Real, settings: &str) -> (Real, Real) {
     let scene = format!(
         r#"Scene(
     grid: (origin: (0.0, 0.0), cell_size: 0.05, cells: (24, 4), edges: (left: Slip, right: Free, bottom: Slip, top: Slip)),
     time: (dt: 1e-5, end: 0.05),
     gravity: (0.0, 0.0),
     materials: [(name: "m", density: 1000.0, model: {model})],
-    settings: (geometry: Axisymmetric),
+    settings: ({settings} geometry: Axisymmetric),
     bodies: [(name: "cylinder", material: "m", shape: Rectangle(min: (0.0, 0.0), max: (1.0, 0.2)), points_per_cell: 2, velocity: Field(x: "{a} * x", y: "0"))],
 )"#
     );
@@ -579,7 +587,7 @@ fn breathing(model: &str, a: Real) -> (Real, Real) {
         .map(|s| s.kinetic)
         .fold(Real::INFINITY, Real::min);
     println!(
-        "breathing cylinder, {model}, a = {a}: energy {start:.4e} J/rad, largest change {:.3}%, kinetic energy down to {:.1}% of the start",
+        "breathing cylinder, {model}, a = {a}, settings ({settings}): energy {start:.4e} J/rad, largest change {:.3}%, kinetic energy down to {:.1}% of the start",
         100.0 * drift,
         100.0 * least_kinetic / samples[0].kinetic
     );
@@ -619,4 +627,16 @@ fn a_breathing_cylinder_keeps_its_energy() {
         assert!(least_kinetic < 0.2, "{model}: {least_kinetic}");
         assert!(drift < 0.01, "{model}: {drift}");
     }
+}
+
+#[test]
+fn under_musl_a_breathing_cylinder_keeps_its_energy() {
+    // The Neo-Hookean cylinder of `a_breathing_cylinder_keeps_its_energy`
+    // under MUSL, whose strain and hoop rates read the remapped velocity:
+    // the same 1% (measured 0.115%, as 0.12% under USF).
+    let model = "NeoHookean((youngs_modulus: 1e7, poisson_ratio: 0.25))";
+    let (drift, least_kinetic) =
+        breathing_under(model, 5.0, "scheme: Usl, position_update: Remapped,");
+    assert!(least_kinetic < 0.2, "{least_kinetic}");
+    assert!(drift < 0.01, "{drift}");
 }
