@@ -53,6 +53,18 @@ fn the_affine_transfer_gives_the_same_state_for_one_and_two_threads() {
 }
 
 #[test]
+fn musl_gives_the_same_state_for_one_and_two_threads() {
+    // USL with remapped positions: the stress update reads the velocities
+    // G2P mapped back to the nodes.
+    let mut scene = elastic_block_scene(40_000);
+    scene.settings.scheme = mpdem::resources::UpdateScheme::Usl;
+    scene.settings.position_update = mpdem::resources::PositionUpdate::Remapped;
+    let one = common::with_threads(1, || hash_after(&scene, 20));
+    let two = common::with_threads(2, || hash_after(&scene, 20));
+    assert_eq!(one, two, "1 thread {one:016x} vs 2 threads {two:016x}");
+}
+
+#[test]
 fn contacts_give_the_same_state_for_one_and_two_threads() {
     let scene = common::load_scene("sliding_45.ron");
     let one = common::with_threads(1, || hash_after(&scene, 300));
