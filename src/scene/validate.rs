@@ -121,7 +121,7 @@ impl Scene {
         {
             return Err(invalid(
                 &["settings", "position_update"],
-                "settings.position_update: Remapped is not available with contact groups yet (its map runs per body); use Forward".into(),
+                "settings.position_update: Remapped is not available with contact groups yet (its map runs per body); use Forward (under USL that is plain USL, which damps the modes the grid resolves poorly)".into(),
             ));
         }
 
