@@ -10,8 +10,9 @@ use crate::shape_functions::{ShapeFunction, StencilGrid};
 use bevy_ecs::prelude::*;
 
 /// In `Traction` mode, splits every contact force over the integration
-/// points of the contact edge of the point's domain and adds each share to
-/// the body's layer with the hat functions N_i (eq. 7b's traction term).
+/// points of the contact edge of the point's domain (facing the contact's
+/// normal) and adds each share to the body's layer with the hat functions
+/// N_i (eq. 7b's traction term).
 /// In `BodyForce` mode the particle-to-grid transfer maps
 /// `MaterialPoints::contact_force` with S_ip, and this system adds the
 /// tangential force's first moment about the point, (f_t ⊗ (x_c − x_p))
@@ -51,7 +52,9 @@ pub fn transfer_contact_forces(
                p: u32,
                (force, tangential, at): (DVec2, DVec2, DVec2)| {
         match &transfer {
-            Transfer::Traction(count) => add_traction(&grid, points, layer, p, force, *count),
+            Transfer::Traction(count) => {
+                add_traction(&grid, points, layer, p, (force, force - tangential), *count)
+            }
             Transfer::Moment(kernel, stencil_grid) => {
                 add_moment(*kernel, stencil_grid, points, layer, p, tangential, at)
             }
@@ -118,14 +121,20 @@ fn add_moment(
 }
 
 /// Splits `force` on point `p` over `count` points of the contact edge of
-/// its domain (facing the force's direction) and adds each share to the
-/// layer with the hat functions.
+/// its domain and adds each share to the layer with the hat functions. The
+/// edge faces the contact: it is turned to the normal part `normal` of the
+/// force (to the force itself where that part is zero), not to the force
+/// as the paper turns it. Turned with a force that friction tilts, the
+/// edge, and with it where the force acts on the body, swings as the
+/// friction force changes, and a punch held still on a pad of one point
+/// per cell (`tests/energy_balance.rs`) fed the pad 1.1 times the work that
+/// pushed it in, in 0.2 s, against 0.9% turned to the normal.
 fn add_traction(
     grid: &Grid,
     points: &MaterialPoints,
     layer: &mut GridLayer,
     p: u32,
-    force: DVec2,
+    (force, normal): (DVec2, DVec2),
     count: u32,
 ) {
     let magnitude = force.length();
@@ -133,7 +142,8 @@ fn add_traction(
         return;
     }
     let p = p as usize;
-    let direction = force / magnitude;
+    let facing = if normal == DVec2::ZERO { force } else { normal };
+    let direction = facing.normalize();
     let share = force / count as Real;
     // uGIMP domains are square: the x half-size is the half-size.
     for at in traction_points(points.position[p], points.half_size[p].x, direction, count) {

@@ -27,8 +27,9 @@ pub enum ForceApplication {
 }
 
 /// The integration points of a traction (section 3.2.3, Fig. 4): the point's
-/// square domain (half-size `half_size`) is turned to face the force
-/// direction `direction` (unit, pointing into the point) and shrunk by √2/2,
+/// square domain (half-size `half_size`) is turned to face `direction`
+/// (unit, pointing into the point: the contact's normal; the paper turns it
+/// to the force, see `transfer_contact_forces`) and shrunk by √2/2,
 /// the paper's recommendation, so that its nodes match the uGIMP nodes; the
 /// edge on the contact side is cut into `count` equal segments and their
 /// centres are returned.
