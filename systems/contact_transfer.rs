@@ -142,8 +142,11 @@ fn add_traction(
         return;
     }
     let p = p as usize;
-    let facing = if normal == DVec2::ZERO { force } else { normal };
-    let direction = facing.normalize();
+    // A contact's tangential force is at most μ times its normal force
+    // (eq. 18b), so a force with no normal part is zero and has returned
+    // above; the fallback only guards against a normal part lost to
+    // round-off beside a huge μ.
+    let direction = normal.try_normalize().unwrap_or(force / magnitude);
     let share = force / count as Real;
     // uGIMP domains are square: the x half-size is the half-size.
     for at in traction_points(points.position[p], points.half_size[p].x, direction, count) {

@@ -16,12 +16,16 @@ pub enum ForceApplication {
     #[default]
     BodyForce,
     /// The force is a traction on the edge of the point's domain that faces
-    /// the contact, split evenly over `points` points, each share mapped with
-    /// the grid's hat functions N_i. The edge points lie near the contact
-    /// point, not at it: the tangential spring's motion and the force's work
-    /// then match less closely than with `BodyForce`.
+    /// the contact (turned to the contact's normal; the paper turns it to
+    /// the force, which makes a frictional contact feed energy in), split
+    /// evenly over `points` points, each share mapped with the grid's hat
+    /// functions N_i. The edge points lie near the contact point, not at
+    /// it: the tangential spring's motion and the force's work then match
+    /// less closely than with `BodyForce`.
     Traction {
-        /// Number of integration points on the edge (≥ 1; the paper uses 5).
+        /// Number of segments of the edge, each loaded at its centre (≥ 1;
+        /// the paper's resolution i = 5 splits the edge into 4 segments:
+        /// `points: 4`).
         points: u32,
     },
 }
@@ -29,7 +33,8 @@ pub enum ForceApplication {
 /// The integration points of a traction (section 3.2.3, Fig. 4): the point's
 /// square domain (half-size `half_size`) is turned to face `direction`
 /// (unit, pointing into the point: the contact's normal; the paper turns it
-/// to the force, see `transfer_contact_forces`) and shrunk by √2/2,
+/// to the force, see `add_traction` in systems/contact_transfer.rs) and
+/// shrunk by √2/2,
 /// the paper's recommendation, so that its nodes match the uGIMP nodes; the
 /// edge on the contact side is cut into `count` equal segments and their
 /// centres are returned.
