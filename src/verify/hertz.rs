@@ -101,13 +101,15 @@ impl Resolution {
     /// cells finer than the scene's the step shrinks with the cell, which
     /// keeps the scene's Courant number. Measured at R/80 with one point
     /// per cell: at the scene's step (half the CFL limit there) the
-    /// Neo-Hookean disks' contact turns unstable from t = 2e-5 s (a force
-    /// across the line of centres up to 17% of F, F falling behind the
-    /// load; mean |F/F_Hertz(a) − 1| 28.8% over the window), with half the
-    /// step it stays smooth (4.5%). The cause is not established: a node
-    /// there carries about one point's mass (four at the scene's 2 × 2
-    /// points per cell), so the contact springs on it stand nearer their
-    /// limit; the linear elastic disks ran stably at that step.
+    /// Neo-Hookean disks' contact turns unstable from t = 2e-5 s (past
+    /// 4e-5 s a force across the line of centres up to 19% of F, against
+    /// 2% in the stable runs, and F falling behind the load; mean
+    /// |F/F_Hertz(a) − 1| 28.8% over the window). Stable, at that cell:
+    /// half the step (4.5%), half the contact stiffness at the scene's
+    /// step (7.7%), the linear elastic disks at the scene's step (8.3%).
+    /// So likely the contact springs' stability: a node there carries
+    /// about one point's mass (four at the scene's 2 × 2 points per cell);
+    /// not proven.
     pub fn scene(&self, base: &Scene) -> Result<Scene, VerifyError> {
         let mut scene = base.clone();
         if scene.materials.is_empty() || scene.bodies.len() != 2 {
