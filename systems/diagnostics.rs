@@ -6,9 +6,9 @@ use crate::components::{
 };
 use crate::math::DVec2;
 use crate::resources::{
-    BlockLog, BlockPartSample, BlockSample, BodyContacts, BodyPairLog, BodyPairSample, Clock,
-    ContactWork, Diagnostics, EnergyLog, EnergySample, Gravity, LoadWork, MAX_CONTACT_BODIES,
-    NumericalFailure, PairTally, Probes, Settings,
+    BlockLog, BlockSample, BodyContacts, BodyPairLog, BodyPairSample, Clock, ContactWork,
+    Diagnostics, EnergyLog, EnergySample, Gravity, LoadWork, MAX_CONTACT_BODIES, NumericalFailure,
+    PairTally, Probes, Settings,
 };
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -239,7 +239,7 @@ pub fn record_blocks(
         let Ok((_, id, reaction, parts, pose, velocity)) = blocks.get(*entity) else {
             continue;
         };
-        log.samples.push(BlockSample {
+        let sample = BlockSample {
             block: id.index,
             time: clock.time,
             force: reaction.force,
@@ -248,16 +248,7 @@ pub fn record_blocks(
             angle: pose.angle,
             velocity: velocity.linear,
             angular: velocity.angular,
-        });
-        if parts.0.len() > 1 {
-            for (k, force) in parts.0.iter().enumerate() {
-                log.parts.push(BlockPartSample {
-                    block: id.index,
-                    part: k as u32,
-                    time: clock.time,
-                    force: *force,
-                });
-            }
-        }
+        };
+        log.push(sample, &parts.0);
     }
 }

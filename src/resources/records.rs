@@ -215,6 +215,24 @@ pub struct BlockLog {
     pub parts: Vec<BlockPartSample>,
 }
 
+impl BlockLog {
+    /// Appends a block's sample and, for a compound block (more than one
+    /// part), the reactions on its parts (`parts`, in part order) at the
+    /// sample's time.
+    pub fn push(&mut self, sample: BlockSample, parts: &[DVec2]) {
+        self.samples.push(sample);
+        if parts.len() > 1 {
+            self.parts
+                .extend(parts.iter().enumerate().map(|(k, force)| BlockPartSample {
+                    block: sample.block,
+                    part: k as u32,
+                    time: sample.time,
+                    force: *force,
+                }));
+        }
+    }
+}
+
 /// The reaction on one part of a compound block at one time.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BlockPartSample {

@@ -5,19 +5,21 @@ use super::layout_warnings::{body_overlap_warnings, free_edge_warnings};
 use super::step_warnings::off_step_warnings;
 use super::{InitialStress, InitialVelocity, Scene, SceneError, SourceLocation, VelocityField};
 use crate::components::{
-    BodyIndex, BodyName, DampedEnergy, GridLayer, Material, MaterialPoints, NewPoint,
-    RegionConstraint, RegionConstraints, StepTravel, TransferScratch,
+    BlockId, BodyIndex, BodyName, DampedEnergy, GridLayer, Material, MaterialPoints, NewPoint,
+    PartReactions, Pose, RegionConstraint, RegionConstraints, RigidVelocity, StepTravel,
+    TransferScratch,
 };
 use crate::math::{DVec2, Real, SymTensor};
 use crate::resources::{
-    BlockLog, BodyContacts, BodyPairLaw, BodyPairLog, Clock, Diagnostics, EnergyLog, EnergySample,
-    Gravity, Grid, Probe, Probes, SharedLayers, StageLog, StagePlan, StageProgress,
+    BlockLog, BlockSample, BodyContacts, BodyPairLaw, BodyPairLog, BodyPairSample, Clock,
+    Diagnostics, EnergyLog, EnergySample, Gravity, Grid, PairSummary, Probe, Probes, SharedLayers,
+    StageLog, StagePlan, StageProgress,
 };
 use bevy_ecs::prelude::*;
 
 /// Builds the world of a scene that passed [`Scene::validate`]: resources,
-/// then one entity per body in scene order, then the step-0 probe and
-/// energy samples. Returns the world and warnings for the user (e.g. a time
+/// then one entity per body in scene order, then the step-0 probe, energy,
+/// block and body-pair samples. Returns the world and warnings for the user (e.g. a time
 /// step above the CFL limit).
 pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
     let mut world = World::new();
@@ -159,7 +161,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
     world.insert_resource(scene.settings);
     world.insert_resource(scene.contact);
     world.insert_resource(crate::resources::BlockContactHistory::default());
-    world.insert_resource(BlockLog {
+    let mut block_log = BlockLog {
         names: scene.blocks.iter().map(|b| b.name.clone()).collect(),
         samples: Vec::with_capacity(samples * scene.blocks.len()),
         parts: Vec::with_capacity(
@@ -173,7 +175,9 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
                     })
                     .sum::<usize>(),
         ),
-    });
+    };
+    record_blocks_at_the_start(&mut world, &mut block_log);
+    world.insert_resource(block_log);
     world.insert_resource(Gravity(scene.gravity));
     world.insert_resource(Diagnostics::default());
     world.insert_resource(probes);
@@ -221,9 +225,17 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         ));
     }
     // Room for every sample, as for the probes: recording never allocates.
-    world.insert_resource(BodyPairLog {
+    // The first, at the start, has no contacts yet.
+    let mut pair_log = BodyPairLog {
         samples: Vec::with_capacity(samples * laws.len()),
-    });
+    };
+    pair_log.samples.extend(laws.iter().map(|l| BodyPairSample {
+        time: 0.0,
+        a: l.a,
+        b: l.b,
+        summary: PairSummary::default(),
+    }));
+    world.insert_resource(pair_log);
     let shared = share_layers(&mut world, &bodies, &scene.shared_layers());
     world.insert_resource(shared);
     world.insert_resource(BodyContacts {
@@ -330,5 +342,31 @@ fn share_layers(world: &mut World, bodies: &[Entity], groups: &[Vec<usize>]) -> 
     SharedLayers {
         groups,
         total: Vec::new(),
+    }
+}
+
+/// The blocks present at the start, as `record_blocks` samples them after
+/// a step, in scene order: at t = 0, with no reaction yet.
+fn record_blocks_at_the_start(world: &mut World, log: &mut BlockLog) {
+    let mut blocks: Vec<(BlockSample, Vec<DVec2>)> = world
+        .query::<(&BlockId, &Pose, &RigidVelocity, &PartReactions)>()
+        .iter(world)
+        .map(|(id, pose, velocity, parts)| {
+            let sample = BlockSample {
+                block: id.index,
+                time: 0.0,
+                force: DVec2::ZERO,
+                torque: 0.0,
+                origin: pose.origin,
+                angle: pose.angle,
+                velocity: velocity.linear,
+                angular: velocity.angular,
+            };
+            (sample, vec![DVec2::ZERO; parts.0.len()])
+        })
+        .collect();
+    blocks.sort_unstable_by_key(|(sample, _)| sample.block);
+    for (sample, parts) in &blocks {
+        log.push(*sample, parts);
     }
 }
