@@ -34,10 +34,9 @@ pub enum ForceApplication {
 /// square domain (half-size `half_size`) is turned to face `direction`
 /// (unit, pointing into the point: the contact's normal; the paper turns it
 /// to the force, see `add_traction` in systems/contact_transfer.rs) and
-/// shrunk by √2/2,
-/// the paper's recommendation, so that its nodes match the uGIMP nodes; the
-/// edge on the contact side is cut into `count` equal segments and their
-/// centres are returned.
+/// shrunk by √2/2, the paper's recommendation, so that its nodes match the
+/// uGIMP nodes; the edge on the contact side is cut into `count` equal
+/// segments and their centres are returned.
 pub fn traction_points(
     center: DVec2,
     half_size: Real,

@@ -19,8 +19,8 @@ use bevy_ecs::prelude::*;
 
 /// Builds the world of a scene that passed [`Scene::validate`]: resources,
 /// then one entity per body in scene order, then the step-0 probe, energy,
-/// block and body-pair samples. Returns the world and warnings for the user (e.g. a time
-/// step above the CFL limit).
+/// block and body-pair samples. Returns the world and warnings for the
+/// user (e.g. a time step above the CFL limit).
 pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
     let mut world = World::new();
     let grid = Grid {
