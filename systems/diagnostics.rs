@@ -6,9 +6,9 @@ use crate::components::{
 };
 use crate::math::DVec2;
 use crate::resources::{
-    BlockLog, BlockSample, BodyContacts, BodyPairLog, BodyPairSample, Clock, ContactWork,
-    Diagnostics, EnergyLog, EnergySample, Gravity, LoadWork, MAX_CONTACT_BODIES, NumericalFailure,
-    PairTally, Probes, Settings,
+    BlockLog, BodyContacts, BodyPairLog, BodyPairSample, Clock, ContactWork, Diagnostics,
+    EnergyLog, EnergySample, Gravity, LoadWork, MAX_CONTACT_BODIES, NumericalFailure, PairTally,
+    Probes, Settings,
 };
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -239,16 +239,6 @@ pub fn record_blocks(
         let Ok((_, id, reaction, parts, pose, velocity)) = blocks.get(*entity) else {
             continue;
         };
-        let sample = BlockSample {
-            block: id.index,
-            time: clock.time,
-            force: reaction.force,
-            torque: reaction.torque,
-            origin: pose.origin,
-            angle: pose.angle,
-            velocity: velocity.linear,
-            angular: velocity.angular,
-        };
-        log.push(sample, &parts.0);
+        log.record(clock.time, (id, reaction, parts, pose, velocity));
     }
 }

@@ -176,34 +176,29 @@ impl StrainStep<'_> {
     /// The radial velocity at the point, Σ_i S_ip v_i,r (axisymmetry).
     #[inline(always)]
     fn radial_velocity(&self, stencil: &Stencil) -> Real {
-        let (o, n) = (self.origin, self.row_len);
-        let radial = |u: Real, v: DVec2, w: Real| u + w * v.x;
-        match self.velocity {
-            StrainVelocity::Mapped(nodes) => stencil.gather(nodes, o, n, 0.0, |u, node, w, _| {
-                radial(u, node.velocity, w)
-            }),
-            StrainVelocity::Updated(nodes) => stencil.gather(nodes, o, n, 0.0, |u, node, w, _| {
-                radial(u, node.velocity_new, w)
-            }),
-            StrainVelocity::Remapped(v) => {
-                stencil.gather(v, o, n, 0.0, |u, v, w, _| radial(u, *v, w))
-            }
-        }
+        self.gather(stencil, 0.0, |u, v, w, _| u + w * v.x)
     }
 
     /// L_p = Σ_i v_i ⊗ G_ip of the field the strain rate follows.
     #[inline(always)]
     fn velocity_gradient(&self, stencil: &Stencil) -> DMat2 {
-        let (o, n, zero) = (self.origin, self.row_len, DMat2::ZERO);
+        self.gather(stencil, DMat2::ZERO, |l, v, _, g| l + outer(v, g))
+    }
+
+    /// Folds `f` over the stencil's nodes with the velocity the strain rate
+    /// follows (the match is made once per point, not per node).
+    #[inline(always)]
+    fn gather<A>(&self, stencil: &Stencil, init: A, f: impl Fn(A, DVec2, Real, DVec2) -> A) -> A {
+        let (o, n) = (self.origin, self.row_len);
         match self.velocity {
-            StrainVelocity::Mapped(nodes) => stencil.gather(nodes, o, n, zero, |l, node, _, g| {
-                l + outer(node.velocity, g)
-            }),
-            StrainVelocity::Updated(nodes) => stencil.gather(nodes, o, n, zero, |l, node, _, g| {
-                l + outer(node.velocity_new, g)
+            StrainVelocity::Mapped(nodes) => {
+                stencil.gather(nodes, o, n, init, |a, node, w, g| f(a, node.velocity, w, g))
+            }
+            StrainVelocity::Updated(nodes) => stencil.gather(nodes, o, n, init, |a, node, w, g| {
+                f(a, node.velocity_new, w, g)
             }),
             StrainVelocity::Remapped(v) => {
-                stencil.gather(v, o, n, zero, |l, v, _, g| l + outer(*v, g))
+                stencil.gather(v, o, n, init, |a, v, w, g| f(a, *v, w, g))
             }
         }
     }

@@ -2,7 +2,9 @@
 
 use super::Geometry;
 use super::body_contacts::PairSummary;
-use crate::components::{Material, MaterialPoints, PointEnergies};
+use crate::components::{
+    BlockId, Material, MaterialPoints, PartReactions, PointEnergies, Pose, Reaction, RigidVelocity,
+};
 use crate::math::{DVec2, Real, SymTensor};
 use bevy_ecs::prelude::{Entity, Resource};
 use serde::{Deserialize, Serialize};
@@ -216,19 +218,42 @@ pub struct BlockLog {
 }
 
 impl BlockLog {
-    /// Appends a block's sample and, for a compound block (more than one
-    /// part), the reactions on its parts (`parts`, in part order) at the
-    /// sample's time.
-    pub fn push(&mut self, sample: BlockSample, parts: &[DVec2]) {
-        self.samples.push(sample);
-        if parts.len() > 1 {
-            self.parts
-                .extend(parts.iter().enumerate().map(|(k, force)| BlockPartSample {
-                    block: sample.block,
-                    part: k as u32,
-                    time: sample.time,
-                    force: *force,
-                }));
+    /// Appends a block's reaction, pose and velocity at `time` and, for a
+    /// compound block (more than one part), the reactions on its parts.
+    pub fn record(
+        &mut self,
+        time: Real,
+        (id, reaction, parts, pose, velocity): (
+            &BlockId,
+            &Reaction,
+            &PartReactions,
+            &Pose,
+            &RigidVelocity,
+        ),
+    ) {
+        self.samples.push(BlockSample {
+            block: id.index,
+            time,
+            force: reaction.force,
+            torque: reaction.torque,
+            origin: pose.origin,
+            angle: pose.angle,
+            velocity: velocity.linear,
+            angular: velocity.angular,
+        });
+        if parts.0.len() > 1 {
+            self.parts.extend(
+                parts
+                    .0
+                    .iter()
+                    .enumerate()
+                    .map(|(k, force)| BlockPartSample {
+                        block: id.index,
+                        part: k as u32,
+                        time,
+                        force: *force,
+                    }),
+            );
         }
     }
 }

@@ -6,14 +6,14 @@ use super::step_warnings::off_step_warnings;
 use super::{InitialStress, InitialVelocity, Scene, SceneError, SourceLocation, VelocityField};
 use crate::components::{
     BlockId, BodyIndex, BodyName, DampedEnergy, GridLayer, Material, MaterialPoints, NewPoint,
-    PartReactions, Pose, RegionConstraint, RegionConstraints, RigidVelocity, StepTravel,
+    PartReactions, Pose, Reaction, RegionConstraint, RegionConstraints, RigidVelocity, StepTravel,
     TransferScratch,
 };
 use crate::math::{DVec2, Real, SymTensor};
 use crate::resources::{
-    BlockLog, BlockSample, BodyContacts, BodyPairLaw, BodyPairLog, BodyPairSample, Clock,
-    Diagnostics, EnergyLog, EnergySample, Gravity, Grid, PairSummary, Probe, Probes, SharedLayers,
-    StageLog, StagePlan, StageProgress,
+    BlockLog, BodyContacts, BodyPairLaw, BodyPairLog, BodyPairSample, Clock, Diagnostics,
+    EnergyLog, EnergySample, Gravity, Grid, PairSummary, Probe, Probes, SharedLayers, StageLog,
+    StagePlan, StageProgress,
 };
 use bevy_ecs::prelude::*;
 
@@ -348,25 +348,10 @@ fn share_layers(world: &mut World, bodies: &[Entity], groups: &[Vec<usize>]) -> 
 /// The blocks present at the start, as `record_blocks` samples them after
 /// a step, in scene order: at t = 0, with no reaction yet.
 fn record_blocks_at_the_start(world: &mut World, log: &mut BlockLog) {
-    let mut blocks: Vec<(BlockSample, Vec<DVec2>)> = world
-        .query::<(&BlockId, &Pose, &RigidVelocity, &PartReactions)>()
-        .iter(world)
-        .map(|(id, pose, velocity, parts)| {
-            let sample = BlockSample {
-                block: id.index,
-                time: 0.0,
-                force: DVec2::ZERO,
-                torque: 0.0,
-                origin: pose.origin,
-                angle: pose.angle,
-                velocity: velocity.linear,
-                angular: velocity.angular,
-            };
-            (sample, vec![DVec2::ZERO; parts.0.len()])
-        })
-        .collect();
-    blocks.sort_unstable_by_key(|(sample, _)| sample.block);
-    for (sample, parts) in &blocks {
-        log.push(*sample, parts);
+    let mut query = world.query::<(&BlockId, &Reaction, &PartReactions, &Pose, &RigidVelocity)>();
+    let mut blocks: Vec<_> = query.iter(world).collect();
+    blocks.sort_unstable_by_key(|(id, ..)| id.index);
+    for block in blocks {
+        log.record(0.0, block);
     }
 }
