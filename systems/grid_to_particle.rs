@@ -5,7 +5,7 @@ use crate::components::{
     DampedEnergy, GridLayer, MaterialPoints, RemapScratch, StepTravel, TransferScratch,
 };
 use crate::math::{DMat2, DVec2, Real, local_damping, outer};
-use crate::resources::{Clock, Grid, PositionUpdate, Settings};
+use crate::resources::{Clock, Grid, PositionUpdate, Settings, SharedLayers};
 use crate::shape_functions::Stencil;
 use crate::transfer::{MIN_POINTS_PER_TASK, Scatter, ScatterOrder};
 use bevy_ecs::prelude::*;
@@ -46,6 +46,7 @@ pub fn grid_to_particle(
     grid: Res<Grid>,
     settings: Res<Settings>,
     clock: Res<Clock>,
+    mut shared: ResMut<SharedLayers>,
     mut bodies: Query<(
         &mut MaterialPoints,
         &mut StepTravel,
@@ -54,22 +55,22 @@ pub fn grid_to_particle(
         &mut TransferScratch,
     )>,
 ) {
-    let (lo, hi) = grid.wall_bounds();
+    let walls = grid.wall_bounds();
     let (dt, beta, alpha) = (clock.dt, settings.pic_fraction, settings.particle_damping);
-    let forward = settings.position_update == PositionUpdate::Forward;
-    let remapped = settings.position_update == PositionUpdate::Remapped;
+    let position_update = settings.position_update();
+    let remapped = position_update == Some(PositionUpdate::RemappedVelocity);
+    let remaps = settings.remaps_velocity();
     let affine = settings.affine_transfer;
     let order = settings.xpic_order.unwrap_or(0);
     // The nodal velocity that moves the points, as weights of v^n and
     // v^{n+1} (none for the remapped one, taken below): its gradient is the
     // material's motion about each point in contact, which its contacts'
     // springs take next step and whose work the balance counts.
-    let (of_old, of_new) = match settings.position_update {
+    let (of_old, of_new) = match position_update {
         // Eq. 12b moves by S v^n + ½ (V^{n+1} − V^n) ≈ ½ S (v^n + v^{n+1}).
-        _ if order >= 1 => (0.5, 0.5),
-        PositionUpdate::Midpoint => (0.5, 0.5),
-        PositionUpdate::Forward => (0.0, 1.0),
-        PositionUpdate::Remapped => (0.0, 0.0),
+        None | Some(PositionUpdate::PaperEq11b) => (0.5, 0.5),
+        Some(PositionUpdate::NewGridVelocity) => (0.0, 1.0),
+        Some(PositionUpdate::RemappedVelocity) => (0.0, 0.0),
     };
     // Undamped pure FLIP gives the FLIP update itself, bit for bit: nothing
     // is taken, and nothing needs counting.
@@ -153,13 +154,11 @@ pub fn grid_to_particle(
                     *v = next;
                     step
                 } else {
-                    let step = if forward {
-                        grid_new * dt
-                    } else if remapped {
+                    let step = match position_update {
+                        Some(PositionUpdate::NewGridVelocity) => grid_new * dt,
                         // Moved below, once every point has its new velocity.
-                        DVec2::ZERO
-                    } else {
-                        (0.5 * (grid_old + grid_new) - 0.5 * beta * (*v - grid_old)) * dt
+                        Some(PositionUpdate::RemappedVelocity) => DVec2::ZERO,
+                        _ => (0.5 * (grid_old + grid_new) - 0.5 * beta * (*v - grid_old)) * dt,
                     };
                     // Undamped, v^n + a_p Δt is v^{n+1} itself (kept exact).
                     let pic = if alpha == 0.0 {
@@ -176,49 +175,94 @@ pub fn grid_to_particle(
                 if remapped {
                     return 0.0;
                 }
-                move_point(x, v, step, (lo, hi))
+                move_point(x, v, step, walls)
             })
             .reduce(|| 0.0, Real::max);
-        if remapped {
+        if remaps {
             let transfer = (&stencils[..], &*scatter_order);
-            let RemapScratch {
-                momentum, current, ..
-            } = remap;
             let affine = affine.then(|| AffineMap {
                 gradient: affine_gradient,
                 cell: grid.cell_size,
             });
-            map_to_nodes(mass, velocity, affine, layer, transfer, momentum, current);
-            let remapped_velocity = &*current;
-            travel.0 = (
-                position.par_iter_mut(),
-                velocity.par_iter_mut(),
-                velocity_gradient.par_iter_mut(),
-                stencils.par_iter(),
-                touched.par_iter(),
-            )
-                .into_par_iter()
-                .with_min_len(MIN_POINTS_PER_TASK)
-                .map(|(x, v, l, stencil, contact)| {
-                    let u = stencil.interpolate(remapped_velocity, origin, row_len);
-                    if *contact != DVec2::ZERO {
-                        *l = stencil.gather(
-                            remapped_velocity,
-                            origin,
-                            row_len,
-                            DMat2::ZERO,
-                            |l, node_u, _, g| l + outer(*node_u, g),
-                        );
-                    }
-                    move_point(x, v, u * dt, (lo, hi))
-                })
-                .reduce(|| 0.0, Real::max);
+            let RemapScratch {
+                momentum, current, ..
+            } = remap;
+            scatter_momentum(mass, velocity, affine, layer, transfer, momentum, current);
         }
         if takes {
             // In point order, on one thread: the same sum for any thread count.
             damped.0 += taken.iter().sum::<Real>();
         }
     }
+    if !remaps {
+        return;
+    }
+    // A contact group's members move with the group's remapped field.
+    shared.share_field(|entity, f| {
+        if let Ok((.., layer, mut scratch)) = bodies.get_mut(entity) {
+            f(layer, &mut scratch.remap.current);
+        }
+    });
+    for (mut points, mut travel, _, layer, mut scratch) in &mut bodies {
+        let remapped_velocity = &mut scratch.remap.current;
+        momentum_to_velocity(layer, remapped_velocity);
+        if remapped {
+            let stencils = &scratch.stencils;
+            travel.0 = move_remapped(
+                &mut points,
+                stencils,
+                layer,
+                &scratch.remap.current,
+                dt,
+                walls,
+            );
+        }
+    }
+}
+
+/// Moves every point by x += Σ S_ip ṽ_i Δt (`PositionUpdate::RemappedVelocity`)
+/// and, for the points in contact, sets the gradient of that motion; returns
+/// the largest distance moved.
+fn move_remapped(
+    points: &mut MaterialPoints,
+    stencils: &[Stencil],
+    layer: &GridLayer,
+    remapped_velocity: &[DVec2],
+    dt: Real,
+    walls: (DVec2, DVec2),
+) -> Real {
+    let window = layer.window();
+    let (origin, row_len) = (window.start.map(|k| k as u32), window.width());
+    let MaterialPoints {
+        position,
+        velocity,
+        velocity_gradient,
+        contact_force,
+        ..
+    } = points;
+    (
+        position.par_iter_mut(),
+        velocity.par_iter_mut(),
+        velocity_gradient.par_iter_mut(),
+        stencils.par_iter(),
+        contact_force.par_iter(),
+    )
+        .into_par_iter()
+        .with_min_len(MIN_POINTS_PER_TASK)
+        .map(|(x, v, l, stencil, contact)| {
+            let u = stencil.interpolate(remapped_velocity, origin, row_len);
+            if *contact != DVec2::ZERO {
+                *l = stencil.gather(
+                    remapped_velocity,
+                    origin,
+                    row_len,
+                    DMat2::ZERO,
+                    |l, node_u, _, g| l + outer(*node_u, g),
+                );
+            }
+            move_point(x, v, u * dt, walls)
+        })
+        .reduce(|| 0.0, Real::max)
 }
 
 /// Moves a point by `step`, puts it back on a wall it would cross (its
@@ -255,12 +299,28 @@ fn map_to_nodes(
     velocity: &[DVec2],
     affine: Option<AffineMap>,
     layer: &GridLayer,
+    transfer: (&[Stencil], &ScatterOrder),
+    momentum: &mut Scatter<DVec2>,
+    into: &mut Vec<DVec2>,
+) {
+    scatter_momentum(mass, velocity, affine, layer, transfer, momentum, into);
+    momentum_to_velocity(layer, into);
+}
+
+/// Fills `into` on the layer's active nodes with the momentum
+/// Σ_p S_ip m_p V_p, or with `affine` Σ_p S_ip m_p (V_p + C_p (x_i − x̄_p))
+/// as P2G maps it. Nodes outside the active ones keep earlier values.
+fn scatter_momentum(
+    mass: &[Real],
+    velocity: &[DVec2],
+    affine: Option<AffineMap>,
+    layer: &GridLayer,
     (stencils, scatter_order): (&[Stencil], &ScatterOrder),
     momentum: &mut Scatter<DVec2>,
     into: &mut Vec<DVec2>,
 ) {
-    let (active, window, nodes) = (layer.active(), layer.window(), layer.nodes());
-    into.resize(nodes.len(), DVec2::ZERO);
+    let (active, window) = (layer.active(), layer.window());
+    into.resize(layer.nodes().len(), DVec2::ZERO);
     if let Some(AffineMap { gradient, cell }) = affine {
         momentum.scatter(
             stencils,
@@ -282,8 +342,15 @@ fn map_to_nodes(
         .rows_mut(window, into)
         .for_each(|(_, row)| row.fill(DVec2::ZERO));
     momentum.add_into(into, window, |u, mv| *u += mv);
+}
+
+/// Turns the nodal momentum in `field` into velocity on the layer's active
+/// nodes, over the layer's nodal mass (zero below its mass cutoff), and
+/// constrains it like the nodal velocities.
+fn momentum_to_velocity(layer: &GridLayer, field: &mut [DVec2]) {
+    let (active, window, nodes) = (layer.active(), layer.window(), layer.nodes());
     let cutoff = layer.mass_cutoff;
-    active.rows_mut(window, into).for_each(|(j, row)| {
+    active.rows_mut(window, field).for_each(|(j, row)| {
         for (u, node) in row.iter_mut().zip(active.row(window, nodes, j)) {
             *u = if node.mass > cutoff {
                 *u / node.mass
@@ -292,7 +359,7 @@ fn map_to_nodes(
             };
         }
     });
-    layer.constrain(into);
+    layer.constrain(field);
 }
 
 /// Fills `remap.star` with the XPIC(m) nodal velocity v* of eq. 12 on the

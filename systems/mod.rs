@@ -87,12 +87,12 @@ pub enum MpmSystems {
 
 impl MpmSystems {
     /// The order of the sets for an update scheme: USF as Algorithm 1; USL
-    /// moves the stress update after the grid-to-particle transfer.
+    /// and MUSL move the stress update after the grid-to-particle transfer.
     pub fn order(scheme: UpdateScheme) -> [Self; 13] {
         use MpmSystems::*;
         let (middle_a, middle_b, middle_c) = match scheme {
             UpdateScheme::Usf => (StressUpdate, NodalSolve, GridToParticle),
-            UpdateScheme::Usl => (NodalSolve, GridToParticle, StressUpdate),
+            UpdateScheme::Usl | UpdateScheme::Musl => (NodalSolve, GridToParticle, StressUpdate),
         };
         [
             First,

@@ -5,7 +5,7 @@ use crate::components::{
 };
 use crate::materials::{ConstitutiveModel, MaterialModel, PointStep};
 use crate::math::{DMat2, DVec2, Real, outer, rate_of_deformation, spin};
-use crate::resources::{Clock, Geometry, PositionUpdate, Settings, UpdateScheme};
+use crate::resources::{Clock, Geometry, Settings, UpdateScheme};
 use crate::shape_functions::Stencil;
 use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
@@ -20,9 +20,10 @@ use rayon::prelude::*;
 /// USF; under USL, which runs after G2P, at x^{n+1}), and the volume
 /// V = det(F) F_θθ V⁰ with F_θθ = exp(ε_θθ), ε_θθ the hoop strain after
 /// the step. USF uses the nodal
-/// velocity at the start of the step, USL the updated one, and USL with
-/// `PositionUpdate::Remapped` (MUSL) the points' new velocities mapped back
-/// to the nodes, the field that moved them; all with the gradients at x^n.
+/// velocity at the start of the step, USL the updated one, and MUSL the
+/// points' new velocities mapped back to the nodes, the field that moves
+/// them under `PositionUpdate::RemappedVelocity`; all with the gradients
+/// at x^n.
 /// The scheme is fixed here, with the order of the sets, when the schedule
 /// is built.
 ///
@@ -38,7 +39,7 @@ use rayon::prelude::*;
 /// stays (with a PIC fraction both lose what PIC takes, which the energy
 /// balance counts as `damped`).
 ///
-/// Reads: `Clock`, `Settings::geometry` and `position_update`, `GridLayer`,
+/// Reads: `Clock`, `Settings::geometry`, `GridLayer`,
 /// `TransferScratch::stencils` and `remap` (MUSL), `Material`,
 /// `MaterialPoints` (in axisymmetry position and half-size).
 /// Writes: `MaterialPoints` (deformation gradient, volume, stress, strain,
@@ -46,16 +47,14 @@ use rayon::prelude::*;
 pub fn update_stress(
     scheme: UpdateScheme,
 ) -> impl FnMut(Res<Clock>, Res<Settings>, Query<StressUpdateData>) {
-    let after_momentum = scheme == UpdateScheme::Usl;
     move |clock, settings, mut bodies| {
         let geometry = settings.geometry;
-        let remapped = settings.position_update == PositionUpdate::Remapped;
         for (material, mut points, layer, scratch) in &mut bodies {
             let window = layer.window();
-            let velocity = match (after_momentum, remapped) {
-                (false, _) => StrainVelocity::Mapped(layer.nodes()),
-                (true, false) => StrainVelocity::Updated(layer.nodes()),
-                (true, true) => StrainVelocity::Remapped(&scratch.remap.current),
+            let velocity = match scheme {
+                UpdateScheme::Usf => StrainVelocity::Mapped(layer.nodes()),
+                UpdateScheme::Usl => StrainVelocity::Updated(layer.nodes()),
+                UpdateScheme::Musl => StrainVelocity::Remapped(&scratch.remap.current),
             };
             let step = StrainStep {
                 velocity,
@@ -90,7 +89,7 @@ enum StrainVelocity<'a> {
     Mapped(&'a [GridNode]),
     /// USL: v^{n+1}, the nodal solve's.
     Updated(&'a [GridNode]),
-    /// MUSL (USL with `PositionUpdate::Remapped`): ṽ, the points' new
+    /// MUSL: ṽ, the points' new
     /// velocities mapped back to the nodes by G2P
     /// (`TransferScratch::remap.current`, one per stored node).
     Remapped(&'a [DVec2]),

@@ -96,6 +96,7 @@ fn a_collapsing_column_with_xpic_gives_the_whole_grids_result() {
     // outside keep last steps' values, which no stencil may read.
     let mut scene = reduced_column_collapse();
     scene.settings.xpic_order = Some(3);
+    scene.settings.position_update = None;
     let (active, whole) = hashes(&scene, 300);
     assert_eq!(active, whole);
 }

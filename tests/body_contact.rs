@@ -173,7 +173,7 @@ fn disks_that_only_reach_the_outline_interlock_and_dissipate() {
     let (outline, outline_shape) = run_measuring_contacts(&half);
     half.body_contacts[0].law.friction = 0.0;
     let frictionless_outline = energy_drift(&common::run_scene(&half));
-    half.settings.position_update = mpdem::resources::PositionUpdate::Forward;
+    half.settings.position_update = Some(mpdem::resources::PositionUpdate::NewGridVelocity);
     let frictionless_forward = energy_drift(&common::run_scene(&half));
     let report = |name: &str, sim: &Simulation, shape: &ContactShape| {
         println!(

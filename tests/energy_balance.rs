@@ -140,11 +140,11 @@ fn a_punch_driven_into_the_pad_is_counted_by_its_work() {
     // A kinematic punch 0.2 m wide, touching the pad's top points' disks,
     // driven 1.5 mm into it at 0.05 m/s while it turns at 0.1 rad/s (its
     // edges 0.3 mm apart in height at the end: the work of its torque
-    // counts too), undamped, positions remapped (the default eq. 11b lets
+    // counts too), undamped, positions remapped (the paper's eq. 11b lets
     // undamped springs gain energy; see `position_update`).
     let scene = pad(
         &elastic(0.3),
-        "position_update: Remapped",
+        "scheme: Usf, position_update: Some(RemappedVelocity)",
         TURNING_PUNCH,
         "",
         0.03,
@@ -184,7 +184,7 @@ fn a_dynamic_block_s_loss_is_the_pads_gain() {
     // them is what the box lost of ½ M v² + ½ I ω².
     let scene = pad(
         &elastic(0.3),
-        "position_update: Remapped",
+        "scheme: Usf, position_update: Some(RemappedVelocity)",
         "(name: \"box\", shape: Cuboid(half_extents: (0.2, 0.05)), position: (0.2, 0.251),
           motion: Dynamic(density: 5000.0, velocity: (linear: (0.0, -1.0), angular: 3.0)),
           contact: (normal_stiffness: 1e7, tangential_stiffness: 1e7, friction: 0.3))",
@@ -249,7 +249,7 @@ fn a_punch_into_a_plastic_pad_is_balanced_by_the_plastic_work() {
     let scene = pad(
         "MohrCoulomb((youngs_modulus: 1e7, poisson_ratio: 0.3, friction_angle: 20.0,
                       dilation_angle: 0.0, cohesion: 2e4, tension_cutoff: 2e4))",
-        "position_update: Remapped",
+        "scheme: Usf, position_update: Some(RemappedVelocity)",
         "(name: \"punch\", shape: Cuboid(half_extents: (0.1, 0.05)), position: (0.2, 0.25),
           motion: Kinematic((linear: (0.0, -0.1), angular: 0.0)),
           contact: (normal_stiffness: 1e7, tangential_stiffness: 1e7, friction: 0.3))",
@@ -286,13 +286,15 @@ fn under_particle_damping_remapped_points_settle_with_their_strain() {
     // The surcharged pad settled as the pile's stages settle the soil
     // (particle damping 0.7 with PIC 1.0): with the positions remapped the
     // top points settle by their strain, p y / E = 1.95 mm, and the
-    // surcharge's work is p L u; under eq. 11b (the default) they drift
+    // surcharge's work is p L u; under the paper's eq. 11b they drift
     // from it (measured +5.8%), which made the pile's q_c depend on the
     // cell (see scenes/pile_penetration.ron).
     let settled = |update: &str| {
         let scene = pad(
             &elastic(0.0),
-            &format!("pic_fraction: 1.0, particle_damping: 0.7, position_update: {update}"),
+            &format!(
+                "scheme: Usf, pic_fraction: 1.0, particle_damping: 0.7, position_update: Some({update})"
+            ),
             "",
             "(name: \"load\", end: Duration(0.3),
               tractions: [(body: \"pad\", side: Top, traction: (0.0, -1e5))])",
@@ -308,8 +310,8 @@ fn under_particle_damping_remapped_points_settle_with_their_strain() {
             .loads;
         (top_settlement(sim.points_of("pad").expect("pad")), -loads)
     };
-    let (remapped, work) = settled("Remapped");
-    let (midpoint, _) = settled("Midpoint");
+    let (remapped, work) = settled("RemappedVelocity");
+    let (midpoint, _) = settled("PaperEq11b");
     println!(
         "damped pad: top points settle {remapped:.5e} m remapped, {midpoint:.5e} under eq. 11b \
          (p y / E = 1.95e-3); the load's work {work:.3} J/m (p L u = 80)"
@@ -355,8 +357,9 @@ fn footing_under_a_step_load(settings: &str) -> (f64, f64) {
 
 #[test]
 fn under_musl_an_undamped_footing_keeps_a_step_load_s_work() {
-    let (musl, _) = footing_under_a_step_load("scheme: Usl, position_update: Remapped");
-    let (usl_swing, usl_end) = footing_under_a_step_load("scheme: Usl, position_update: Forward");
+    let (musl, _) = footing_under_a_step_load("scheme: Musl");
+    let (usl_swing, usl_end) =
+        footing_under_a_step_load("scheme: Usl, position_update: Some(NewGridVelocity)");
     println!(
         "footing under a step load: balance swing {musl:.2e} (MUSL), {usl_swing:.2e} (USL, \
          {usl_end:.2e} at the end)"
@@ -394,7 +397,7 @@ fn held_punch(friction: f64) -> (f64, f64) {
                edges: (left: Slip, right: Slip, bottom: Fixed, top: Free)),
         time: (dt: 2e-5, end: 0.3),
         gravity: (0.0, 0.0),
-        settings: (position_update: Remapped),
+        settings: (scheme: Usf, position_update: Some(RemappedVelocity)),
         materials: [(name: \"pad\", density: 2000.0,
                      model: NeoHookean((youngs_modulus: 2e7, poisson_ratio: 0.3)))],
         bodies: [(name: \"pad\", material: \"pad\",
@@ -464,7 +467,7 @@ fn a_block_a_stage_removes_takes_its_springs_energy_along() {
     // column books it as taken by the block, so the balance does not jump.
     let scene = pad(
         &elastic(0.3),
-        "position_update: Remapped",
+        "scheme: Usf, position_update: Some(RemappedVelocity)",
         TURNING_PUNCH,
         "(name: \"press\", end: Duration(0.03)),
          (name: \"release\", end: Duration(0.01), remove_blocks: [\"punch\"])",

@@ -332,7 +332,7 @@ fn undamped_block_drift(scheme: UpdateScheme, position_update: PositionUpdate) -
     let mut scene = common::load_scene("block_on_ground.ron");
     scene.settings.grid_damping = 0.0;
     scene.settings.scheme = scheme;
-    scene.settings.position_update = position_update;
+    scene.settings.position_update = Some(position_update);
     scene.time.end = 1.0;
     let sim = common::run_scene(&scene);
     let samples = &sim.world().resource::<EnergyLog>().samples;
@@ -355,30 +355,29 @@ fn undamped_block_drift(scheme: UpdateScheme, position_update: PositionUpdate) -
 
 #[test]
 fn an_undamped_block_on_the_ground_keeps_its_energy_under_musl() {
-    let (gain, loss) = undamped_block_drift(UpdateScheme::Usl, PositionUpdate::Remapped);
+    let (gain, loss) = undamped_block_drift(UpdateScheme::Musl, PositionUpdate::RemappedVelocity);
     assert!(gain < 0.05, "balance gain {gain:.3e} of gravity's work");
     assert!(loss < 0.05, "balance loss {loss:.3e} of gravity's work");
 }
 
 #[test]
 fn an_undamped_block_on_the_ground_keeps_its_energy_under_usf_with_remapped_positions() {
-    let (gain, loss) = undamped_block_drift(UpdateScheme::Usf, PositionUpdate::Remapped);
+    let (gain, loss) = undamped_block_drift(UpdateScheme::Usf, PositionUpdate::RemappedVelocity);
     assert!(gain < 0.05, "balance gain {gain:.3e} of gravity's work");
     assert!(loss < 0.05, "balance loss {loss:.3e} of gravity's work");
 }
 
-/// Known limit (README, block on fixed ground): the default eq. 11b update
-/// (`Midpoint`) moves the points with the mean of the old and new nodal
+/// Known limit: the paper's eq. 11b update (`PaperEq11b`) moves the points with the mean of the old and new nodal
 /// velocities while the contact force was found at x^n, which multiplies
 /// each contact spring's phase-space area by 1 + (ωΔt)²/2 per step; the
-/// undamped block's balance gains many times gravity's work. `Forward`
-/// under USF gains slowly (the points move with the grid velocity, the
+/// undamped block's balance gains many times gravity's work.
+/// `NewGridVelocity` under USF gains slowly (the points move with the grid velocity, the
 /// strain follows the velocity mapped from the points). This is the target
 /// they should meet; they fail today.
 #[test]
-#[ignore = "known limit: Midpoint and USF Forward feed undamped contact springs"]
+#[ignore = "known limit: PaperEq11b and USF NewGridVelocity feed undamped contact springs"]
 fn an_undamped_block_on_the_ground_keeps_its_energy_under_the_other_updates() {
-    for position_update in [PositionUpdate::Midpoint, PositionUpdate::Forward] {
+    for position_update in [PositionUpdate::PaperEq11b, PositionUpdate::NewGridVelocity] {
         let (gain, loss) = undamped_block_drift(UpdateScheme::Usf, position_update);
         assert!(
             gain < 0.05 && loss < 0.05,

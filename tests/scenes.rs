@@ -286,22 +286,22 @@ fn a_run_of_a_bad_scene_writes_nothing() {
 
 #[test]
 fn damping_above_one_and_xpic_orders_out_of_range_are_refused() {
-    let from = "pic_fraction: 0.0)";
+    let from = "position_update: Some(PaperEq11b))";
     for (to, expected) in [
         (
-            "pic_fraction: 0.0, grid_damping: 1.5)",
+            "position_update: Some(PaperEq11b), grid_damping: 1.5)",
             "expected a damping coefficient in [0, 1], got 1.5",
         ),
         (
-            "pic_fraction: 0.0, particle_damping: -0.1)",
+            "position_update: Some(PaperEq11b), particle_damping: -0.1)",
             "expected a damping coefficient in [0, 1], got -0.1",
         ),
         (
-            "pic_fraction: 0.0, xpic_order: Some(0))",
+            "position_update: Some(PaperEq11b), xpic_order: Some(0))",
             "expected an XPIC order from 1 to 10, got 0",
         ),
         (
-            "pic_fraction: 0.0, xpic_order: Some(11))",
+            "position_update: Some(PaperEq11b), xpic_order: Some(11))",
             "expected an XPIC order from 1 to 10, got 11",
         ),
     ] {

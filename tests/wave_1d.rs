@@ -83,6 +83,7 @@ fn xpic_of_order_one_is_pic() {
     let xpic = with_settings(
         Settings {
             xpic_order: Some(1),
+            position_update: None,
             ..base
         },
         0.05,
@@ -112,6 +113,7 @@ fn xpic_dissipates_less_as_its_order_grows() {
             let sim = with_settings(
                 Settings {
                     xpic_order: Some(m),
+                    position_update: None,
                     ..base
                 },
                 0.5,

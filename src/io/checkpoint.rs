@@ -49,8 +49,9 @@ const MAGIC: &[u8; 8] = b"MPDEMCK\0";
 /// refused rather than misread. (9: surface tractions no longer held in
 /// the points' external forces; 10: the sampling interval kept; 11: the
 /// settings' geometry and the contacts' tangential spring energy; 12: the
-/// surface loads' and the blocks' work; 13: the points' inelastic work.)
-const FORMAT: u32 = 13;
+/// surface loads' and the blocks' work; 13: the points' inelastic work;
+/// 14: the named schemes, the position update optional.)
+const FORMAT: u32 = 14;
 
 /// Why a checkpoint could not be written or resumed.
 #[derive(Debug, thiserror::Error)]

@@ -6,60 +6,60 @@ use crate::shape_functions::ShapeFunction;
 use bevy_ecs::prelude::Resource;
 use serde::{Deserialize, Serialize};
 
-/// When the stress is updated relative to the nodal momentum update. Read
-/// once, when the step schedule is built (it fixes the order of the sets).
+/// When and from which nodal velocity the stress is updated (scene
+/// `settings.scheme`). Read once, when the step schedule is built (it fixes
+/// the order of the sets).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum UpdateScheme {
-    /// Update stress first (Algorithm 1): strain rate from the nodal velocity
-    /// mapped at the start of the step. Default, as in the paper.
+    /// Update stress first (the paper's Algorithm 1): strain rate from the
+    /// nodal velocity mapped from the points at the start of the step.
+    /// Default: with the default `PositionUpdate::RemappedVelocity` it keeps
+    /// the energy of undamped DEM contacts (`tests/safe_defaults.rs`).
     #[default]
     Usf,
-    /// Update stress last: strain rate from the updated nodal velocity, or
-    /// with `PositionUpdate::Remapped` from the points' new velocities
-    /// mapped back to the nodes (MUSL, Sulsky et al. 1995). Plain USL damps
-    /// the modes the grid resolves poorly (an undamped elastic footing under
-    /// a step traction loses 21% of the load's largest work in 0.3 s, about
-    /// 45 of its periods; see `update_stress`); undamped MUSL does not.
+    /// Update stress last, with the strain rate from the nodal solve's
+    /// v^{n+1}. Plain USL damps the modes the grid resolves poorly: the
+    /// strain follows the whole change of the nodal velocity, the points
+    /// keep only what the map to them and back returns (an undamped elastic
+    /// footing under a step traction loses a fifth of the load's largest
+    /// work in about 45 of its periods; see `update_stress`).
     Usl,
+    /// Modified USL (Sulsky et al. 1995): update stress last, with the
+    /// strain rate from ṽ, the points' new velocities mapped back to the
+    /// nodes. Material, points and contacts follow one velocity field, and
+    /// undamped FLIP keeps the energy of elastic bodies and of DEM contact
+    /// springs (in fast impacts on blocks less closely than USF with
+    /// remapped positions). Costs one more momentum scatter and gather per
+    /// step than USF with the paper's eq. 11b.
+    Musl,
 }
 
 /// How G2P moves the points (scene `settings.position_update`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum PositionUpdate {
-    /// Eq. 11b: x += (v^n + v^{n+1})/2 Δt − β/2 (V^n − v^n) Δt, with the
-    /// nodal velocities interpolated at the point. Default, as in the paper.
-    /// With a force that depends on positions (a DEM contact spring of
-    /// frequency ω) and the velocity updated by the force at x^n, each step
-    /// multiplies the spring's phase-space area by 1 + (ωΔt)²/2: undamped
-    /// contacts gain energy (a block resting undamped on the ground gains
-    /// 73 times gravity's work on it in 1 s). Damped scenes, as the
-    /// paper's, do not show it.
-    #[default]
-    Midpoint,
+    /// The paper's eq. 11b: x += (v^n + v^{n+1})/2 Δt − β/2 (V^n − v^n) Δt,
+    /// the nodal velocities interpolated at the point. With a force that
+    /// depends on positions (a DEM contact spring of frequency ω) and the
+    /// velocity updated by the force at x^n, each step multiplies the
+    /// spring's phase-space area by 1 + (ωΔt)²/2: undamped contacts gain
+    /// energy (a block resting undamped on the ground jumps off it). Damped
+    /// scenes, as the paper's, do not show it.
+    PaperEq11b,
     /// x += v^{n+1} Δt, the interpolated new nodal velocity: symplectic
-    /// Euler for the contact springs. Under plain USL the material and the
-    /// contacts then see one displacement and the contacts gain nothing,
-    /// but USL's stress update damps the poorly resolved modes (see
-    /// `UpdateScheme::Usl`); under USF the strain follows the velocity
-    /// mapped from the points, not this one, and undamped contacts gain
-    /// energy slowly. `Remapped` avoids both.
-    Forward,
+    /// Euler for the contact springs. Under USF the strain follows the
+    /// velocity mapped from the points, not this one, and undamped contacts
+    /// gain energy slowly.
+    NewGridVelocity,
     /// x += ṽ Δt with ṽ = Σ S_ip ṽ_i, where ṽ_i = Σ_p S_ip m_p V_p^{n+1} / m_i
-    /// (with `affine_transfer`, V_p^{n+1} + C_p (x_i − x̄_p); constrained)
-    /// maps the points' new velocities back to the nodes as P2G does, with
-    /// the stencils at x^n: the field from which the next step's USF strain
-    /// rate is computed, there with the stencils at x^{n+1}. The material
-    /// and the contact springs then see one displacement field (to that
-    /// difference), and the contact springs are integrated by symplectic
-    /// Euler. Under USL (MUSL) the stress update, which runs after G2P,
-    /// takes its strain rate from the same ṽ_i, with the stencils at x^n:
-    /// material, points and contacts follow one field exactly. Under
-    /// USF with FLIP, `Midpoint` and `Forward` move the points with the
-    /// unmapped grid velocity while the strain follows the mapped one; with
-    /// stiff DEM contacts that mismatch feeds energy in (a block resting on
-    /// the ground does not settle without damping). Costs one more
-    /// momentum scatter and gather per step.
-    Remapped,
+    /// (with `affine_transfer`, V_p^{n+1} + C_p (x_i − x̄_p); constrained;
+    /// summed over a contact group's members) maps the points' new
+    /// velocities back to the nodes as P2G does, with the stencils at x^n:
+    /// the field from which the next step's strain rate is computed. The
+    /// material and the contact springs then see one displacement field
+    /// (under MUSL exactly), and the springs are integrated by symplectic
+    /// Euler. Default under the FLIP/PIC update (XPIC moves the points by
+    /// its own eq. 12b).
+    RemappedVelocity,
 }
 
 /// What the plane of the simulation stands for (scene `settings.geometry`).
@@ -105,7 +105,7 @@ impl Geometry {
 pub struct Settings {
     /// Shape function (default uGIMP, the paper's choice).
     pub shape_function: ShapeFunction,
-    /// Update scheme (default USF, Algorithm 1).
+    /// Update scheme (default USF, the paper's Algorithm 1).
     pub scheme: UpdateScheme,
     /// PIC fraction β of eq. 11 in [0, 1]: 0 is pure FLIP, 1 pure PIC.
     /// Default 0: FLIP conserves energy, which dynamic benchmarks need.
@@ -127,8 +127,11 @@ pub struct Settings {
     /// the direction of the point's motion before it updates V_p. Default 0.
     #[serde(deserialize_with = "crate::scene::rules::de_damping")]
     pub particle_damping: Real,
-    /// How the points move in G2P (default `Midpoint`, eq. 11b).
-    pub position_update: PositionUpdate,
+    /// How the points move in G2P. Default (`None`): `RemappedVelocity`
+    /// under the FLIP/PIC update, eq. 12b under XPIC, which takes no other.
+    /// The paper's is `PaperEq11b`. Read it through
+    /// [`Settings::position_update`].
+    pub position_update: Option<PositionUpdate>,
     /// Affine momentum transfer: P2G maps V_p + C_p (x_i − x_p) to node i,
     /// C_p the gradient at the point of the nodal velocity that G2P last
     /// interpolated (Taylor particle-in-cell, Nakamura et al. 2023; with the
@@ -159,7 +162,7 @@ impl Default for Settings {
             xpic_order: None,
             grid_damping: 0.0,
             particle_damping: 0.0,
-            position_update: PositionUpdate::Midpoint,
+            position_update: None,
             affine_transfer: false,
             geometry: Geometry::PlaneStrain,
         }
@@ -167,6 +170,25 @@ impl Default for Settings {
 }
 
 impl Settings {
+    /// How G2P moves the points: the scene's choice or the default
+    /// `RemappedVelocity`; `None` under XPIC (eq. 12b).
+    pub fn position_update(&self) -> Option<PositionUpdate> {
+        match self.xpic_order {
+            Some(_) => None,
+            None => Some(
+                self.position_update
+                    .unwrap_or(PositionUpdate::RemappedVelocity),
+            ),
+        }
+    }
+
+    /// Whether G2P maps the points' new velocities back to the nodes (ṽ):
+    /// the remapped position update and MUSL's stress update read them.
+    pub fn remaps_velocity(&self) -> bool {
+        self.scheme == UpdateScheme::Musl
+            || self.position_update() == Some(PositionUpdate::RemappedVelocity)
+    }
+
     /// Checks the ranges; the message names the field and the allowed range.
     pub fn check(&self) -> Result<(), String> {
         fraction(self.pic_fraction).map_err(|e| format!("pic_fraction: {e}"))?;
@@ -187,10 +209,9 @@ impl Settings {
                     "affine_transfer: XPIC's smoothing maps the point velocities without their gradients; use one or the other".into(),
                 );
             }
-            if self.position_update != PositionUpdate::Midpoint {
+            if let Some(update) = self.position_update {
                 return Err(format!(
-                    "position_update: {:?} is a choice of eq. 11 (the FLIP/PIC update); XPIC moves the points its own way",
-                    self.position_update
+                    "position_update: {update:?} is a choice of eq. 11 (the FLIP/PIC update); XPIC moves the points its own way (eq. 12b): leave position_update out"
                 ));
             }
         }
@@ -213,9 +234,13 @@ mod tests {
             position_update,
             ..Settings::default()
         };
-        assert!(xpic(PositionUpdate::Midpoint).check().is_ok());
-        for other in [PositionUpdate::Forward, PositionUpdate::Remapped] {
-            let message = xpic(other).check().expect_err("refused");
+        assert!(xpic(None).check().is_ok());
+        for other in [
+            PositionUpdate::PaperEq11b,
+            PositionUpdate::NewGridVelocity,
+            PositionUpdate::RemappedVelocity,
+        ] {
+            let message = xpic(Some(other)).check().expect_err("refused");
             assert!(
                 message.contains(&format!("{other:?} is a choice of eq. 11")),
                 "{message}"

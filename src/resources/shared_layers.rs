@@ -1,6 +1,7 @@
 //! Contact groups (scene `group`): bodies that share one grid layer.
 
 use crate::components::{GridLayer, GridNode, NodeRect};
+use crate::math::DVec2;
 use bevy_ecs::prelude::{Entity, Resource};
 use rayon::prelude::*;
 
@@ -15,6 +16,8 @@ pub struct SharedLayers {
     pub groups: Vec<Vec<Entity>>,
     /// Scratch: one group's summed nodes.
     pub total: Vec<GridNode>,
+    /// Scratch: one group's summed nodal field (see [`Self::share_field`]).
+    pub field_total: Vec<DVec2>,
 }
 
 impl SharedLayers {
@@ -28,7 +31,7 @@ impl SharedLayers {
         add: impl Fn(&mut GridNode, &GridNode) + Sync,
         set: impl Fn(&mut GridNode, &GridNode) + Sync,
     ) {
-        let Self { groups, total } = self;
+        let Self { groups, total, .. } = self;
         for group in groups.iter() {
             // The members share one active rectangle (or, after a point has
             // left the grid, the whole grid for one of them: then all take it).
@@ -61,6 +64,48 @@ impl SharedLayers {
                             for (node, sum) in nodes.iter_mut().zip(rect.row(rect, total, j)) {
                                 set(node, sum);
                             }
+                        });
+                });
+            }
+        }
+    }
+
+    /// For every group, replaces each member's nodal field (laid out like
+    /// its layer's stored nodes) by the members' sum on their shared active
+    /// rectangle, summed in scene order. `visit(entity, f)` must call `f`
+    /// on that body's layer and field.
+    pub fn share_field(
+        &mut self,
+        mut visit: impl FnMut(Entity, &mut dyn FnMut(&GridLayer, &mut Vec<DVec2>)),
+    ) {
+        let Self {
+            groups,
+            field_total: total,
+            ..
+        } = self;
+        for group in groups.iter() {
+            let mut rect = NodeRect::default();
+            for &member in group {
+                visit(member, &mut |layer, _| rect = rect.union(layer.active()));
+            }
+            total.clear();
+            total.resize(rect.area(), DVec2::ZERO);
+            for &member in group {
+                visit(member, &mut |layer, field| {
+                    let window = layer.window();
+                    rect.rows_mut(rect, total).for_each(|(j, sums)| {
+                        for (sum, value) in sums.iter_mut().zip(rect.row(window, field, j)) {
+                            *sum += *value;
+                        }
+                    });
+                });
+            }
+            for &member in group {
+                visit(member, &mut |layer, field| {
+                    let total = &*total;
+                    rect.rows_mut(layer.window(), field)
+                        .for_each(|(j, values)| {
+                            values.copy_from_slice(rect.row(rect, total, j));
                         });
                 });
             }

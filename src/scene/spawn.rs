@@ -1,6 +1,6 @@
 //! Turning a validated scene into a bevy `World`.
 
-use super::contact_stability::body_contact_stability_warnings;
+use super::contact_stability::{body_contact_stability_warnings, undamped_contact_warning};
 use super::layout_warnings::{body_overlap_warnings, free_edge_warnings};
 use super::step_warnings::off_step_warnings;
 use super::{InitialStress, InitialVelocity, Scene, SceneError, SourceLocation, VelocityField};
@@ -224,6 +224,7 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
             &laws,
         ));
     }
+    warnings.extend(undamped_contact_warning(scene));
     // Room for every sample, as for the probes: recording never allocates.
     // The first, at the start, has no contacts yet.
     let mut pair_log = BodyPairLog {
@@ -341,7 +342,7 @@ fn share_layers(world: &mut World, bodies: &[Entity], groups: &[Vec<usize>]) -> 
     }
     SharedLayers {
         groups,
-        total: Vec::new(),
+        ..SharedLayers::default()
     }
 }
 

@@ -10,7 +10,7 @@ use crate::contact::ForceApplication;
 use crate::io::output::{PROBE_PLOT_PREFIX, RUN_FILE_STEMS};
 use crate::materials::MaterialModel;
 use crate::math::Real;
-use crate::resources::{MAX_CONTACT_BODIES, PositionUpdate};
+use crate::resources::MAX_CONTACT_BODIES;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
@@ -116,15 +116,6 @@ impl Scene {
                 "settings.xpic_order: XPIC is not available with contact groups yet (its projections run per body); use pic_fraction".into(),
             ));
         }
-        if self.settings.position_update == PositionUpdate::Remapped
-            && !self.shared_layers().is_empty()
-        {
-            return Err(invalid(
-                &["settings", "position_update"],
-                "settings.position_update: Remapped is not available with contact groups yet (its map runs per body); use Forward (under USL that is plain USL, which damps the modes the grid resolves poorly)".into(),
-            ));
-        }
-
         let mut material_names = BTreeSet::new();
         for (k, m) in self.materials.iter().enumerate() {
             let at = ["materials", &quoted(&m.name)];
