@@ -587,3 +587,46 @@ fn a_stage_duration_off_the_time_step_warns_with_the_steps_taken() {
     assert_eq!(log.records[0].steps, 2);
     assert!((1..=2).contains(&log.records[1].steps));
 }
+
+#[test]
+fn an_update_that_feeds_undamped_contact_springs_is_warned_of() {
+    use mpdem::resources::{PositionUpdate, UpdateScheme};
+    let warnings = |scheme, update, damping| {
+        let mut scene = common::load_scene("block_on_ground.ron");
+        scene.settings.grid_damping = damping;
+        scene.settings.scheme = scheme;
+        scene.settings.position_update = update;
+        Simulation::from_scene(&scene)
+            .unwrap_or_else(|e| panic!("{e}"))
+            .warnings()
+            .iter()
+            .filter(|w| w.starts_with("settings.position_update"))
+            .cloned()
+            .collect::<Vec<_>>()
+    };
+    let paper = warnings(UpdateScheme::Usf, Some(PositionUpdate::PaperEq11b), 0.0);
+    assert_eq!(paper.len(), 1, "{paper:?}");
+    assert!(
+        paper[0].contains("PaperEq11b under Usf feeds undamped DEM contact springs")
+            && paper[0].contains("RemappedVelocity"),
+        "{}",
+        paper[0]
+    );
+    let grid_under_usf = warnings(
+        UpdateScheme::Usf,
+        Some(PositionUpdate::NewGridVelocity),
+        0.0,
+    );
+    assert_eq!(grid_under_usf.len(), 1, "{grid_under_usf:?}");
+    // The safe ones, and the same scene damped, are not warned of.
+    assert!(warnings(UpdateScheme::Usf, None, 0.0).is_empty());
+    assert!(
+        warnings(
+            UpdateScheme::Musl,
+            Some(PositionUpdate::NewGridVelocity),
+            0.0
+        )
+        .is_empty()
+    );
+    assert!(warnings(UpdateScheme::Usf, Some(PositionUpdate::PaperEq11b), 0.1).is_empty());
+}
