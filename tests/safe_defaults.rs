@@ -12,8 +12,7 @@
 //! damping) moves it by many times that.
 //!
 //! `cargo test --release --test safe_defaults -- --ignored --nocapture`
-//! prints the same suite for every candidate setting, and runs the case
-//! the defaults do not meet yet (a block held by friction on a slope).
+//! prints the same suite for every candidate setting.
 
 mod common;
 
@@ -151,17 +150,18 @@ fn block_sliding(settings: Settings) -> Outcome {
 /// A squat block of `block_on_ground.ron`'s material (0.4 m along the slope,
 /// 0.1 m high, so that it slides before it topples) on its ground as a
 /// slope of `slope` degrees (gravity turned, as in the toppling scenes)
-/// with friction `friction`:
-/// gravity from the start, or brought in over ten stages of 0.05 s. Returns
-/// the energies after `hold` seconds at full gravity, and how far the
-/// block's centre moved along the slope then (m).
+/// with friction `friction`, gravity applied at once or, with
+/// `ramp_stages`, brought in over 0.5 s by that many equal steps (one
+/// stage each). Returns the energy samples of the `hold` seconds at full
+/// gravity and how far the block's centre of mass moved along the slope
+/// then (m).
 fn block_on_a_slope(
     settings: Settings,
     slope: f64,
     friction: f64,
-    ramped: bool,
+    ramp_stages: usize,
     hold: f64,
-) -> (Vec<EnergySample>, f64, f64) {
+) -> (Vec<EnergySample>, f64) {
     let mut scene = common::load_scene("block_on_ground.ron");
     let angle = slope.to_radians();
     let full = 9.81 * DVec2::new(angle.sin(), -angle.cos());
@@ -171,17 +171,20 @@ fn block_on_a_slope(
         max: DVec2::new(0.5, 0.2),
     };
     scene.blocks[0].position = DVec2::new(0.35, 0.05);
-    scene.grid.cells = (35, 15);
+    scene.grid.cells = (40, 15);
     scene.blocks[0].contact.friction = friction;
-    let ramp = if ramped { 0.5 } else { 0.0 };
-    if ramped {
-        scene.stages = (1..=10)
+    scene.probes.clear();
+    scene.settings = settings;
+    let ramp = if ramp_stages > 0 { 0.5 } else { 0.0 };
+    if ramp_stages > 0 {
+        let each = ramp / ramp_stages as f64;
+        scene.stages = (1..=ramp_stages)
             .map(|k| {
                 let mut stage = mpdem::scene::StageSpec::new(
                     format!("ramp {k}"),
-                    mpdem::scene::StageEnd::Duration(0.05),
+                    mpdem::scene::StageEnd::Duration(each),
                 );
-                stage.gravity = Some(full * (k as f64 / 10.0));
+                stage.gravity = Some(full * (k as f64 / ramp_stages as f64));
                 stage
             })
             .collect();
@@ -190,35 +193,41 @@ fn block_on_a_slope(
         scene.stages.push(held);
     }
     scene.time.end = ramp + hold;
-    scene.probes.clear();
-    scene.settings = Settings { ..settings };
     let mut sim = Simulation::from_scene(&scene).unwrap_or_else(|e| panic!("{e}"));
-    sim.run_until(ramp).unwrap_or_else(|e| panic!("{e}"));
     let centre = |sim: &mut Simulation| {
         let points = sim.points_of("block").expect("block");
-        let sum: DVec2 = points.position.iter().copied().sum();
-        sum.x / points.len() as f64
+        let moment: DVec2 = points
+            .position
+            .iter()
+            .zip(&points.mass)
+            .map(|(x, m)| *m * *x)
+            .sum();
+        moment.x / points.mass.iter().sum::<f64>()
     };
+    sim.run_until(ramp).unwrap_or_else(|e| panic!("{e}"));
     let start = centre(&mut sim);
-    let mut largest: f64 = 0.0;
-    let steps = (hold / scene.time.dt).round() as u64;
-    for _ in 0..steps {
-        sim.step().unwrap_or_else(|e| panic!("{e}"));
-        largest = largest.max((centre(&mut sim) - start).abs());
-    }
+    sim.run().unwrap_or_else(|e| panic!("{e}"));
     let creep = centre(&mut sim) - start;
-    let samples = sim.world().resource::<EnergyLog>().samples.clone();
-    let held: Vec<EnergySample> = samples
-        .into_iter()
+    let held = sim
+        .world()
+        .resource::<EnergyLog>()
+        .samples
+        .iter()
         .filter(|s| s.time >= ramp - 1e-12)
+        .copied()
         .collect();
-    (held, creep, largest)
+    (held, creep)
 }
 
 /// (f) On a 20° slope with μ = 0.5 (tan 20° = 0.36), gravity ramped in over
-/// 0.5 s: the balance over the second after the ramp, and the creep then.
+/// 0.5 s in 100 steps of 1% (every 5 ms, about one and a half periods of
+/// the block bouncing on its springs, 3.4 ms): the balance over the second
+/// after the ramp, and the creep then. (In ten steps of 10% the ramp sets
+/// the block bouncing: the contacts lose their normal force in turn and
+/// the block slides 17 mm in that second, as a block loaded at once does,
+/// see `a_suddenly_loaded_block_creeps_down_its_slope_as_by_finite_elements`.)
 fn block_held_by_friction(settings: Settings) -> (Outcome, f64) {
-    let (samples, creep, _) = block_on_a_slope(settings, 20.0, 0.5, true, 1.0);
+    let (samples, creep) = block_on_a_slope(settings, 20.0, 0.5, 100, 1.0);
     (Outcome::of(&samples), creep)
 }
 
@@ -274,6 +283,7 @@ fn suite(label: &str, settings: Settings) -> Vec<String> {
         "(g) punch pushed then held",
         punch_pushed_then_held(settings),
     );
+    failed.extend(held_by_friction(label, settings));
     failed
 }
 
@@ -301,23 +311,6 @@ fn held_by_friction(label: &str, settings: Settings) -> Vec<String> {
 #[test]
 fn the_defaults_keep_the_energy_of_every_suite_case() {
     let failed = suite("defaults", Settings::default());
-    assert!(
-        failed.is_empty(),
-        "over the bound at the defaults: {failed:?}"
-    );
-}
-
-/// Known limit: an undamped elastic block held by friction on a slope
-/// creeps. Every candidate setting fails it (USF with remapped positions:
-/// 17 mm in the second after the ramp, the balance 3.1%); a normal dashpot
-/// on the contact (c_n = 1e3 N s/m, about 0.3 of critical for one point on
-/// its spring) stops the creep (5e-8 m), so the creep comes from the
-/// points' undamped vibration on their contact springs, each slipping
-/// while its normal force dips.
-#[test]
-#[ignore = "known limit: undamped point contacts ratchet down a slope held by friction"]
-fn the_defaults_hold_a_block_on_a_slope_by_friction() {
-    let failed = held_by_friction("defaults", Settings::default());
     assert!(
         failed.is_empty(),
         "over the bound at the defaults: {failed:?}"
@@ -356,13 +349,64 @@ fn the_suite_for_every_candidate() {
             ..Settings::default()
         };
         let label = format!("{scheme:?} {update:?}");
-        match std::panic::catch_unwind(|| {
-            let mut failed = suite(&label, settings);
-            failed.extend(held_by_friction(&label, settings));
-            failed
-        }) {
+        match std::panic::catch_unwind(|| suite(&label, settings)) {
             Ok(failed) => println!("{label}: over the bound: {failed:?}"),
             Err(_) => println!("{label}: a case failed to run (see the panic above)"),
         }
     }
+}
+
+#[test]
+fn a_suddenly_loaded_block_creeps_down_its_slope_as_by_finite_elements() {
+    // The squat block on a 20° slope with μ = 0.4, 10% above tan 20°,
+    // gravity applied at once, undamped, 0.5 s. It drops onto its contact
+    // springs and bounces on them, its normal force swinging between about
+    // zero and twice its weight, so friction lets it slip while the force
+    // is low: it creeps down the slope. The same elastic block on the same
+    // disks and springs by explicit finite elements
+    // (`mpdem::verify::elastic_block`) creeps alike, so the creep is the
+    // model's stick–slip, not the material point method's error.
+    let angle = 20f64.to_radians();
+    let friction = 0.4;
+    let (samples, creep) = block_on_a_slope(Settings::default(), 20.0, friction, 0, 0.5);
+    let balance = Outcome::of(&samples);
+    let scene = common::load_scene("block_on_ground.ron");
+    let fe = mpdem::verify::elastic_block::ElasticBlock {
+        size: DVec2::new(0.4, 0.1),
+        material: match scene.materials[0].model {
+            mpdem::materials::MaterialModel::LinearElastic(m) => m,
+            _ => panic!("the block is linear elastic"),
+        },
+        density: scene.materials[0].density,
+        gravity: 9.81 * DVec2::new(angle.sin(), -angle.cos()),
+        point_spacing: 0.01,
+        contact: mpdem::contact::ContactLaw {
+            friction,
+            ..scene.blocks[0].contact
+        },
+    };
+    let reference = fe.centre_displacements(&[0.5])[0].x;
+    println!(
+        "suddenly loaded block, μ = {friction}: creeps {creep:.4e} m in 0.5 s (finite elements \
+         {reference:.4e} m, {:+.1}%); balance swing {:.2}% of the largest energy {:.3e} J/m",
+        100.0 * (creep / reference - 1.0),
+        100.0 * balance.ratio(),
+        balance.scale
+    );
+    // The finite-element block does creep (a rigid block on these springs
+    // would not move at all), by centimetres.
+    assert!(reference > 0.01, "the reference creeps {reference} m");
+    // Stick–slip sums many slips, each set off by the contact forces'
+    // fluctuations, which the two discretisations carry differently: 10%
+    // (measured 3.8%; halving the engine's step moves its creep by 17%,
+    // 27.6 -> 23.0 mm, so it is resolved to about that).
+    assert!(
+        (creep / reference - 1.0).abs() < 0.1,
+        "creep {creep} m against {reference} m by finite elements"
+    );
+    assert!(
+        within(balance.ratio(), BOUND),
+        "balance {:.2}%",
+        100.0 * balance.ratio()
+    );
 }

@@ -238,10 +238,33 @@ impl ElasticBlock {
     /// positions from the block's lower-left corner), as the MPM scene's
     /// probes measure it.
     pub fn rotations(&self, top: DVec2, bottom: DVec2, times: &[Real]) -> Vec<Real> {
+        let mut axis0 = None;
+        self.observe(times, |mesh| {
+            let (top, bottom) = (mesh.place(top), mesh.place(bottom));
+            let axis = mesh.at(&mesh.x, top) - mesh.at(&mesh.x, bottom);
+            let axis0 = *axis0.get_or_insert(axis);
+            -axis0.perp_dot(axis).atan2(axis0.dot(axis))
+        })
+    }
+
+    /// The displacement (m) of the block's centre of mass at `times`.
+    pub fn centre_displacements(&self, times: &[Real]) -> Vec<DVec2> {
+        let mut start = None;
+        self.observe(times, |mesh| {
+            let total: Real = mesh.mass.iter().sum();
+            let moment: DVec2 = mesh.x.iter().zip(&mesh.mass).map(|(x, m)| *m * *x).sum();
+            let centre = moment / total;
+            centre - *start.get_or_insert(centre)
+        })
+    }
+
+    /// Integrates the block from rest under gravity applied at once, and
+    /// returns `measure` of the mesh at the start and at each of `times`
+    /// (the first value, at the start, is dropped).
+    fn observe<T>(&self, times: &[Real], mut measure: impl FnMut(&Mesh) -> T) -> Vec<T> {
         let mut mesh = Mesh::new(self);
         let mut disks = Disks::new(&mesh, self.size.x, self.point_spacing);
-        let (top, bottom) = (mesh.place(top), mesh.place(bottom));
-        let axis0 = mesh.at(&mesh.x, top) - mesh.at(&mesh.x, bottom);
+        measure(&mesh);
         let dt = self.time_step();
         let mut force = vec![DVec2::ZERO; mesh.x.len()];
         let (mut t, mut out) = (0.0, Vec::with_capacity(times.len()));
@@ -260,8 +283,7 @@ impl ElasticBlock {
                 }
                 t += dt;
             }
-            let axis = mesh.at(&mesh.x, top) - mesh.at(&mesh.x, bottom);
-            out.push(-axis0.perp_dot(axis).atan2(axis0.dot(axis)));
+            out.push(measure(&mesh));
         }
         out
     }
