@@ -630,3 +630,17 @@ fn an_update_that_feeds_undamped_contact_springs_is_warned_of() {
     );
     assert!(warnings(UpdateScheme::Usf, Some(PositionUpdate::PaperEq11b), 0.1).is_empty());
 }
+
+#[test]
+fn an_optional_value_written_bare_is_refused_with_the_form_it_takes() {
+    let (from, to) = (
+        "position_update: Some(PaperEq11b)",
+        "position_update: PaperEq11b",
+    );
+    let error = parse_edited(from, to);
+    assert_error(
+        error,
+        line_of(from, to, to),
+        "expected an optional value: Some(...) or None",
+    );
+}

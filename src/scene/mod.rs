@@ -459,7 +459,11 @@ impl Scene {
         // Editors on Windows may start a UTF-8 file with a byte-order mark.
         let source = source.strip_prefix('\u{feff}').unwrap_or(source);
         let mut scene: Scene = ron::from_str(source).map_err(|e| {
-            let message = e.code.to_string();
+            let mut message = e.code.to_string();
+            if matches!(e.code, ron::Error::ExpectedOption) {
+                // An optional field is written Some(value), or left out.
+                message = "expected an optional value: Some(...) or None".into();
+            }
             // The parser stands past the time entry when it finds its end
             // missing or given twice: point at the entry instead.
             let location = if [TIME_END_TWICE, TIME_END_MISSING].contains(&message.as_str()) {
