@@ -409,7 +409,10 @@ fn a_checkpoint_of_another_scene_or_no_checkpoint_is_refused() {
     std::fs::write(&cut, &bytes[..bytes.len() / 2]).expect("write");
     let error = refusal(&scene, &cut);
     assert!(
-        error.to_string().contains("its state cannot be read"),
+        matches!(error, CheckpointError::Damaged { .. })
+            && error
+                .to_string()
+                .contains("bytes of state where its header says"),
         "{error}"
     );
     let scene_file = common::scene_path("wave_1d.ron");
@@ -422,6 +425,40 @@ fn a_checkpoint_of_another_scene_or_no_checkpoint_is_refused() {
     let error = refusal(&scene, &missing);
     assert!(matches!(error, CheckpointError::Io { .. }), "{error}");
     assert!(error.to_string().contains("missing.bin"), "{error}");
+}
+
+#[test]
+fn a_checkpoint_with_a_flipped_bit_is_refused_and_left_as_it_is() {
+    let scene = common::load_scene("wave_1d.ron");
+    let file = checkpoint_file("flipped");
+    let mut sim = build(&scene);
+    step_to(&mut sim, 10);
+    sim.write_checkpoint(&file).expect("checkpoint");
+    let bytes = std::fs::read(&file).expect("checkpoint");
+    // Bits in the length and checksum, and spread over the state (24 bytes
+    // of header: magic, layout, length, checksum).
+    let mut places: Vec<usize> = vec![13, 21];
+    places.extend((1..=20).map(|k| 24 + k * (bytes.len() - 25) / 20));
+    for (n, &at) in places.iter().enumerate() {
+        let bit = n % 8;
+        let mut flipped = bytes.clone();
+        flipped[at] ^= 1 << bit;
+        let damaged = checkpoint_file(&format!("flipped_{n}"));
+        std::fs::write(&damaged, &flipped).expect("write");
+        match Simulation::resume(&scene, &damaged) {
+            Ok(_) => panic!("byte {at}, bit {bit} flipped: resumed"),
+            Err(error) => assert!(
+                matches!(error, CheckpointError::Damaged { .. })
+                    && error.to_string().contains("the checkpoint is damaged"),
+                "byte {at}, bit {bit}: {error}"
+            ),
+        }
+        assert_eq!(
+            std::fs::read(&damaged).expect("read"),
+            flipped,
+            "left as it is"
+        );
+    }
 }
 
 /// A user controller's state: a push on the bar that follows the integral

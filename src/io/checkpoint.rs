@@ -20,8 +20,11 @@
 //! entities of their own are not.
 //!
 //! The file is binary: eight magic bytes, the layout's number (`u32`,
-//! little-endian), then the state (`postcard`), every real number stored
-//! exactly.
+//! little-endian), the state's length in bytes (`u64`) and its CRC-32
+//! (`u32`, both little-endian), then the state (`postcard`), every real
+//! number stored exactly. A file whose length or checksum does not match
+//! (a flipped bit, a partial copy) is refused before anything is read
+//! from it.
 
 use crate::components::{
     BlockContacts, BlockId, DampedEnergy, MaterialPoints, NeighbourList, PartReactions, Pose,
@@ -45,13 +48,42 @@ use std::path::{Path, PathBuf};
 /// The file's first bytes.
 const MAGIC: &[u8; 8] = b"MPDEMCK\0";
 
+/// The bytes before the state: magic, layout, length and checksum.
+const HEADER_BYTES: usize = 8 + 4 + 8 + 4;
+
+/// The state after the layout's number, once its length and CRC-32 match
+/// those stored before it; otherwise what does not match.
+fn checked_payload(stored: &[u8]) -> Result<&[u8], String> {
+    let Some((length, stored)) = stored.split_first_chunk::<8>() else {
+        return Err("it ends before its length".into());
+    };
+    let Some((checksum, payload)) = stored.split_first_chunk::<4>() else {
+        return Err("it ends before its checksum".into());
+    };
+    let length = u64::from_le_bytes(*length);
+    if length != payload.len() as u64 {
+        return Err(format!(
+            "{} bytes of state where its header says {length}",
+            payload.len()
+        ));
+    }
+    let (stored, computed) = (u32::from_le_bytes(*checksum), crc32fast::hash(payload));
+    if stored != computed {
+        return Err(format!(
+            "CRC-32 {computed:08x} where its header says {stored:08x}"
+        ));
+    }
+    Ok(payload)
+}
+
 /// The layout of the stored state; a checkpoint of another layout is
 /// refused rather than misread. (9: surface tractions no longer held in
 /// the points' external forces; 10: the sampling interval kept; 11: the
 /// settings' geometry and the contacts' tangential spring energy; 12: the
 /// surface loads' and the blocks' work; 13: the points' inelastic work;
-/// 14: the named schemes, the position update optional.)
-const FORMAT: u32 = 14;
+/// 14: the named schemes, the position update optional; 15: the state's
+/// length and checksum.)
+const FORMAT: u32 = 15;
 
 /// Why a checkpoint could not be written or resumed.
 #[derive(Debug, thiserror::Error)]
@@ -70,6 +102,14 @@ pub enum CheckpointError {
         /// The checkpoint file.
         path: PathBuf,
         /// What failed.
+        detail: String,
+    },
+    /// The file's state does not match its length or checksum.
+    #[error("{}: the checkpoint is damaged ({detail}); it is left as it is", path.display())]
+    Damaged {
+        /// The checkpoint file.
+        path: PathBuf,
+        /// What did not match.
         detail: String,
     },
     /// The file is not a checkpoint this version can read.
@@ -188,12 +228,16 @@ pub fn write_checkpoint(
             detail,
         })?;
     let state = capture(world, fingerprint, user);
-    let mut bytes = MAGIC.to_vec();
-    bytes.extend_from_slice(&FORMAT.to_le_bytes());
-    let bytes = postcard::to_extend(&state, bytes).map_err(|e| CheckpointError::Encode {
+    let payload = postcard::to_stdvec(&state).map_err(|e| CheckpointError::Encode {
         path: path.to_path_buf(),
         detail: e.to_string(),
     })?;
+    let mut bytes = Vec::with_capacity(HEADER_BYTES + payload.len());
+    bytes.extend_from_slice(MAGIC);
+    bytes.extend_from_slice(&FORMAT.to_le_bytes());
+    bytes.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+    bytes.extend_from_slice(&crc32fast::hash(&payload).to_le_bytes());
+    bytes.extend_from_slice(&payload);
     // Named like the outputs' temporary files, so a new run into the
     // folder removes one that a killed run left.
     let partial = crate::io::manifest::partial_path(path);
@@ -245,6 +289,10 @@ pub fn restore_checkpoint(
             "layout {format} where this version reads {FORMAT}"
         )));
     }
+    let stored = checked_payload(stored).map_err(|detail| CheckpointError::Damaged {
+        path: path.to_path_buf(),
+        detail,
+    })?;
     let (state, rest): (RunState, &[u8]) = postcard::take_from_bytes(stored)
         .map_err(|e| format_error(format!("its state cannot be read: {e}")))?;
     if !rest.is_empty() {
