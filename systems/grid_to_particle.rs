@@ -16,10 +16,12 @@ use rayon::prelude::*;
 /// damping α_p |a_p| sign(V^n) per component:
 /// * eq. 11a: V^{n+1} = (1 − β)(V^n + a_p Δt) + β (v^n + a_p Δt);
 /// * eq. 11b: x^{n+1} = x^n + ½(v^n + v^{n+1}) Δt − ½ β (V^n − v^n) Δt, or
-///   with `PositionUpdate::Forward`, x^{n+1} = x^n + v^{n+1} Δt, or with
-///   `PositionUpdate::Remapped`, x^{n+1} = x^n + Σ S_ip ṽ_i Δt, ṽ_i the
-///   new point velocities mapped back to the nodes as P2G maps them
-///   (mass-weighted, affine with `Settings::affine_transfer`, constrained);
+///   with `PositionUpdate::NewGridVelocity`, x^{n+1} = x^n + v^{n+1} Δt, or
+///   with `PositionUpdate::RemappedVelocity`, x^{n+1} = x^n + Σ S_ip ṽ_i Δt,
+///   ṽ_i the new point velocities mapped back to the nodes as P2G maps them
+///   (mass-weighted, affine with `Settings::affine_transfer`, constrained,
+///   summed over a contact group's members), which MUSL's stress update
+///   reads too;
 ///
 /// or, with an XPIC order m (eq. 12), v* = Σ_{k=1..m} (−1)^{k+1} C(m, k) u_k
 /// on the nodes, u_1 = v_i^n and u_k = S⁺ S u_{k−1} (interpolated to the
@@ -33,7 +35,7 @@ use rayon::prelude::*;
 /// still move it) is put back on the wall, and its velocity's component
 /// into the wall removed.
 ///
-/// Reads: `Grid`, `Settings`, `Clock`, `GridLayer`, `TransferScratch::stencils`,
+/// Reads: `Grid`, `Settings`, `Clock`, `SharedLayers` (groups), `GridLayer`, `TransferScratch::stencils`,
 /// `order` and `undamped`, `MaterialPoints` (mass, contact force: the
 /// points in contact this step).
 /// Writes: `MaterialPoints` (position, velocity, velocity gradient of the

@@ -17,7 +17,7 @@ use rayon::prelude::*;
 /// the model dissipated (per unit volume, times V^{n+1}) added to the
 /// point's inelastic work. In axisymmetry
 /// D_zz is the hoop rate ε̇_θθ = Σ_i S_ip v_i,r / r_p (r_p at x^n under
-/// USF; under USL, which runs after G2P, at x^{n+1}), and the volume
+/// USF; under USL and MUSL, which run after G2P, at x^{n+1}), and the volume
 /// V = det(F) F_θθ V⁰ with F_θθ = exp(ε_θθ), ε_θθ the hoop strain after
 /// the step. USF uses the nodal
 /// velocity at the start of the step, USL the updated one, and MUSL the

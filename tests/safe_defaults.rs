@@ -89,7 +89,8 @@ fn block_dropped(settings: Settings) -> Outcome {
 }
 
 /// (c) A dynamic box (0.4 m × 0.2 m, 2500 kg/m³) set on a fixed box through
-/// undamped block–block springs, for 1 s: its kinetic and gravitational
+/// undamped block–block springs, for 1 s (the rigid-block integrator alone:
+/// no body, so the numerical settings do not enter): its kinetic and gravitational
 /// energy and the springs' (two corners each sunk by δ, 2 · ½ k_n δ²; it
 /// stays level), against m g times its deepest sinking.
 fn box_on_box(settings: Settings) -> Outcome {

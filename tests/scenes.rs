@@ -612,23 +612,51 @@ fn an_update_that_feeds_undamped_contact_springs_is_warned_of() {
         "{}",
         paper[0]
     );
-    let grid_under_usf = warnings(
-        UpdateScheme::Usf,
-        Some(PositionUpdate::NewGridVelocity),
-        0.0,
-    );
-    assert_eq!(grid_under_usf.len(), 1, "{grid_under_usf:?}");
+    for scheme in [UpdateScheme::Usf, UpdateScheme::Musl] {
+        let grid = warnings(scheme, Some(PositionUpdate::NewGridVelocity), 0.0);
+        assert_eq!(grid.len(), 1, "{grid:?}");
+    }
     // The safe ones, and the same scene damped, are not warned of.
     assert!(warnings(UpdateScheme::Usf, None, 0.0).is_empty());
+    assert!(warnings(UpdateScheme::Musl, None, 0.0).is_empty());
     assert!(
         warnings(
-            UpdateScheme::Musl,
+            UpdateScheme::Usl,
             Some(PositionUpdate::NewGridVelocity),
             0.0
         )
         .is_empty()
     );
     assert!(warnings(UpdateScheme::Usf, Some(PositionUpdate::PaperEq11b), 0.1).is_empty());
+    // Damped, then released undamped by a stage: warned of.
+    let mut released = common::load_scene("block_on_ground.ron");
+    released.settings.position_update = Some(PositionUpdate::PaperEq11b);
+    let mut settle = mpdem::scene::StageSpec::new("settle", mpdem::scene::StageEnd::Duration(0.1));
+    settle.grid_damping = Some(0.2);
+    let mut free = mpdem::scene::StageSpec::new("free", mpdem::scene::StageEnd::Duration(0.1));
+    free.grid_damping = Some(0.0);
+    released.stages = vec![settle, free];
+    let sim = Simulation::from_scene(&released).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        sim.warnings()
+            .iter()
+            .any(|w| w.starts_with("settings.position_update: PaperEq11b")),
+        "{:?}",
+        sim.warnings()
+    );
+    // Every contact with a normal dashpot: not warned of.
+    let mut dashpot = common::load_scene("block_on_ground.ron");
+    dashpot.settings.grid_damping = 0.0;
+    dashpot.settings.position_update = Some(PositionUpdate::PaperEq11b);
+    dashpot.blocks[0].contact.normal_damping = 100.0;
+    let sim = Simulation::from_scene(&dashpot).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        !sim.warnings()
+            .iter()
+            .any(|w| w.starts_with("settings.position_update")),
+        "{:?}",
+        sim.warnings()
+    );
 }
 
 #[test]

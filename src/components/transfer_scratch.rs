@@ -33,7 +33,7 @@ impl AddAssign for MassMomentumForce {
 pub struct TransferScratch {
     /// Each point's stencil at the start of the step (positions x^n). Every
     /// transfer of the step uses these, including the stress update of USL
-    /// after the positions have moved.
+    /// and MUSL after the positions have moved.
     pub stencils: Vec<Stencil>,
     /// The order in which this step's scatters visit the points, sorted
     /// from `stencils` by particle-to-grid.
@@ -55,7 +55,7 @@ pub struct TransferScratch {
 
 /// Work space of one body's maps from the points back to its nodes in G2P:
 /// the XPIC(m) iteration (eq. 12) and the remapped velocity of
-/// [`crate::resources::PositionUpdate::Remapped`].
+/// [`crate::resources::PositionUpdate::RemappedVelocity`] and MUSL.
 #[derive(Clone, Debug, Default)]
 pub struct RemapScratch {
     /// Velocities interpolated to the points, S u_{k−1}.

@@ -93,6 +93,11 @@ impl SharedLayers {
             for &member in group {
                 visit(member, &mut |layer, field| {
                     let window = layer.window();
+                    // P2G made every member's active nodes the group's.
+                    debug_assert!(
+                        window.covers(rect),
+                        "a member's window misses the group's nodes"
+                    );
                     rect.rows_mut(rect, total).for_each(|(j, sums)| {
                         for (sum, value) in sums.iter_mut().zip(rect.row(window, field, j)) {
                             *sum += *value;

@@ -8,45 +8,51 @@ use crate::resources::{BodyPairLaw, PositionUpdate, UpdateScheme};
 use crate::scene::Scene;
 
 /// A warning when the scene has DEM contacts (blocks with bodies, or body
-/// contact laws), no damping in its settings or stages (grid, particle,
-/// PIC fraction or XPIC), and a position update that feeds undamped
-/// contact springs energy: the paper's eq. 11b under any scheme (a step
-/// multiplies a spring's phase-space area by 1 + (ωΔt)²/2), and the new
-/// grid velocity under USF (the strain follows another field than the
-/// points). It names the setting and the safe alternative.
+/// contact laws, not every one with a normal dashpot), runs some stage
+/// without damping (grid, particle, PIC fraction or XPIC; the settings as
+/// each stage leaves them), and moves its points in a way that feeds
+/// undamped contact springs energy: by the paper's eq. 11b under any
+/// scheme (a step multiplies a spring's phase-space area by
+/// 1 + (ωΔt)²/2), or by the new grid velocity under USF or MUSL (the strain
+/// follows another field than the points). It names the setting and the
+/// safe alternative.
 pub fn undamped_contact_warning(scene: &Scene) -> Option<String> {
-    let contacts =
-        !scene.bodies.is_empty() && (!scene.blocks.is_empty() || !scene.body_contacts.is_empty());
     let settings = &scene.settings;
-    let damped = |value: Real| value != 0.0;
-    let stage_damped = scene.stages.iter().any(|stage| {
-        [
+    let update = settings.position_update()?;
+    let feeds = match update {
+        PositionUpdate::PaperEq11b => true,
+        PositionUpdate::NewGridVelocity => settings.scheme != UpdateScheme::Usl,
+        PositionUpdate::RemappedVelocity => false,
+    };
+    let dashpots = scene.blocks.iter().all(|b| b.contact.normal_damping > 0.0)
+        && scene
+            .body_contacts
+            .iter()
+            .all(|c| c.law.normal_damping > 0.0);
+    let contacts = !scene.bodies.is_empty()
+        && (!scene.blocks.is_empty() || !scene.body_contacts.is_empty())
+        && !dashpots;
+    // The damping of the run's start, then as each stage leaves it.
+    let mut damping = [
+        settings.pic_fraction,
+        settings.grid_damping,
+        settings.particle_damping,
+    ];
+    let mut undamped = damping.iter().all(|&d| d == 0.0);
+    for stage in &scene.stages {
+        let changes = [
             stage.pic_fraction,
             stage.grid_damping,
             stage.particle_damping,
-        ]
-        .into_iter()
-        .flatten()
-        .any(damped)
-    });
-    let undamped = settings.xpic_order.is_none()
-        && ![
-            settings.pic_fraction,
-            settings.grid_damping,
-            settings.particle_damping,
-        ]
-        .into_iter()
-        .any(damped)
-        && !stage_damped;
-    let feeds = match settings.position_update() {
-        Some(PositionUpdate::PaperEq11b) => true,
-        Some(PositionUpdate::NewGridVelocity) => settings.scheme == UpdateScheme::Usf,
-        _ => false,
-    };
-    let update = settings.position_update()?;
-    (contacts && undamped && feeds).then(|| {
+        ];
+        for (value, change) in damping.iter_mut().zip(changes) {
+            *value = change.unwrap_or(*value);
+        }
+        undamped |= damping.iter().all(|&d| d == 0.0);
+    }
+    (feeds && contacts && undamped).then(|| {
         format!(
-            "settings.position_update: {update:?} under {:?} feeds undamped DEM contact springs energy (an elastic body resting on a block gains energy and leaves it); use the default position update (leave position_update out: RemappedVelocity), or add damping",
+            "settings.position_update: {update:?} under {:?} feeds undamped DEM contact springs energy (an elastic body resting on a block gains energy and leaves it); use the default position update (leave position_update out: RemappedVelocity), or damping",
             settings.scheme
         )
     })
