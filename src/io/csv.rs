@@ -1,4 +1,4 @@
-//! CSV time series: probes and energies.
+//! CSV time series: probes, energies, blocks, body pairs and stages.
 
 use crate::math::Real;
 use crate::resources::{BlockLog, BodyPairLog, EnergyLog, Probes, StageLog};
@@ -17,13 +17,47 @@ fn field(name: &str) -> Cow<'_, str> {
     }
 }
 
-/// Writes `probes.csv`: one row per probe and sample time, columns
-/// probe, time, x, y, ux, uy, vx, vy, sxx, syy, sxy, szz (SI, stress tension-positive).
-pub fn write_probes(path: &Path, probes: &Probes) -> std::io::Result<()> {
+/// A record the outputs write as CSV, one row per sample: written whole
+/// ([`write_series`]) or appended to as the run records it
+/// ([`crate::io::RunOutput`]).
+pub trait CsvSeries {
+    /// The header line (without its line break).
+    const HEADER: &'static str;
+
+    /// How many rows the record holds.
+    fn rows(&self) -> usize;
+
+    /// Writes row `k` (with its line break); `bodies` are the bodies' names
+    /// in scene order.
+    fn write_row(&self, k: usize, bodies: &[String], out: &mut dyn Write) -> std::io::Result<()>;
+}
+
+/// Writes the whole `series` to `path`.
+pub fn write_series<S: CsvSeries>(
+    path: &Path,
+    series: &S,
+    bodies: &[String],
+) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
-    writeln!(out, "probe,time,x,y,ux,uy,vx,vy,sxx,syy,sxy,szz")?;
-    for s in &probes.samples {
-        let name = field(&probes.probes[s.probe].name);
+    writeln!(out, "{}", S::HEADER)?;
+    for k in 0..series.rows() {
+        series.write_row(k, bodies, &mut out)?;
+    }
+    out.flush()
+}
+
+/// `probes.csv`: one row per probe and sample time, columns probe, time,
+/// x, y, ux, uy, vx, vy, sxx, syy, sxy, szz (SI, stress tension-positive).
+impl CsvSeries for Probes {
+    const HEADER: &'static str = "probe,time,x,y,ux,uy,vx,vy,sxx,syy,sxy,szz";
+
+    fn rows(&self) -> usize {
+        self.samples.len()
+    }
+
+    fn write_row(&self, k: usize, _: &[String], out: &mut dyn Write) -> std::io::Result<()> {
+        let s = &self.samples[k];
+        let name = field(&self.probes[s.probe].name);
         let [sxx, syy, sxy, szz] = s.stress.to_array();
         writeln!(
             out,
@@ -35,12 +69,11 @@ pub fn write_probes(path: &Path, probes: &Probes) -> std::io::Result<()> {
             s.displacement.y,
             s.velocity.x,
             s.velocity.y
-        )?;
+        )
     }
-    out.flush()
 }
 
-/// Writes `energy.csv`: time, kinetic, strain, contact, total, gravity,
+/// `energy.csv`: time, kinetic, strain, contact, total, gravity,
 /// inelastic, loads, blocks, dissipated, damped, balance (J per metre of
 /// thickness). `total` sums the kinetic, strain and contact (the point
 /// contacts' springs) energies, conserved by free elastic bodies;
@@ -49,13 +82,15 @@ pub fn write_probes(path: &Path, probes: &Probes) -> std::io::Result<()> {
 /// dissipated and what damping and the PIC part took (see
 /// [`crate::resources::EnergySample::balance`] for what it still leaves
 /// out).
-pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
-    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
-    writeln!(
-        out,
-        "time,kinetic,strain,contact,total,gravity,inelastic,loads,blocks,dissipated,damped,balance"
-    )?;
-    for s in &energy.samples {
+impl CsvSeries for EnergyLog {
+    const HEADER: &'static str = "time,kinetic,strain,contact,total,gravity,inelastic,loads,blocks,dissipated,damped,balance";
+
+    fn rows(&self) -> usize {
+        self.samples.len()
+    }
+
+    fn write_row(&self, k: usize, _: &[String], out: &mut dyn Write) -> std::io::Result<()> {
+        let s = &self.samples[k];
         writeln!(
             out,
             "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
@@ -71,26 +106,26 @@ pub fn write_energy(path: &Path, energy: &EnergyLog) -> std::io::Result<()> {
             s.dissipated,
             s.damped,
             s.balance()
-        )?;
+        )
     }
-    out.flush()
 }
 
-/// Writes `body_contacts.csv`: one row per pair of bodies with a law and
-/// sample time, columns time, body_a, body_b, force_x, force_y (on body_a,
-/// N/m), contacts (point pairs), half_width, pressure_half_width and
+/// `body_contacts.csv`: one row per pair of bodies with a law and sample
+/// time, columns time, body_a, body_b, force_x, force_y (on body_a, N/m),
+/// contacts (point pairs), half_width, pressure_half_width and
 /// initial_pressure_half_width (m, see [`crate::resources::PairSummary`]).
-/// `names` are the bodies in scene order.
 /// `time` is the end of the step whose contacts (found from the positions
 /// at its start) are summed, like the other records.
-pub fn write_body_pairs(path: &Path, log: &BodyPairLog, names: &[String]) -> std::io::Result<()> {
-    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
-    writeln!(
-        out,
-        "time,body_a,body_b,force_x,force_y,contacts,half_width,pressure_half_width,initial_pressure_half_width"
-    )?;
-    for s in &log.samples {
-        let name = |i: u32| field(names.get(i as usize).map_or("?", String::as_str));
+impl CsvSeries for BodyPairLog {
+    const HEADER: &'static str = "time,body_a,body_b,force_x,force_y,contacts,half_width,pressure_half_width,initial_pressure_half_width";
+
+    fn rows(&self) -> usize {
+        self.samples.len()
+    }
+
+    fn write_row(&self, k: usize, bodies: &[String], out: &mut dyn Write) -> std::io::Result<()> {
+        let s = &self.samples[k];
+        let name = |i: u32| field(bodies.get(i as usize).map_or("?", String::as_str));
         let p = &s.summary;
         writeln!(
             out,
@@ -104,9 +139,8 @@ pub fn write_body_pairs(path: &Path, log: &BodyPairLog, names: &[String]) -> std
             p.half_width,
             p.pressure_half_width,
             p.initial_pressure_half_width
-        )?;
+        )
     }
-    out.flush()
 }
 
 /// Writes a reaction–displacement curve: `time,displacement,resistance`.
@@ -119,13 +153,18 @@ pub fn write_curve(path: &Path, rows: &[(Real, Real, Real)]) -> std::io::Result<
     out.flush()
 }
 
-/// Writes `stages.csv`: one row per finished stage, columns stage (index),
-/// name, start, end (s), steps, reason (`duration`, `condition`, `max_time`
-/// or `scene_end`).
-pub fn write_stages(path: &Path, log: &StageLog) -> std::io::Result<()> {
-    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
-    writeln!(out, "stage,name,start,end,steps,reason")?;
-    for r in &log.records {
+/// `stages.csv`: one row per finished stage, columns stage (index), name,
+/// start, end (s), steps, reason (`duration`, `condition`, `max_time` or
+/// `scene_end`).
+impl CsvSeries for StageLog {
+    const HEADER: &'static str = "stage,name,start,end,steps,reason";
+
+    fn rows(&self) -> usize {
+        self.records.len()
+    }
+
+    fn write_row(&self, k: usize, _: &[String], out: &mut dyn Write) -> std::io::Result<()> {
+        let r = &self.records[k];
         writeln!(
             out,
             "{},{},{:e},{:e},{},{}",
@@ -135,19 +174,23 @@ pub fn write_stages(path: &Path, log: &StageLog) -> std::io::Result<()> {
             r.end,
             r.steps,
             r.reason.label()
-        )?;
+        )
     }
-    out.flush()
 }
 
-/// Writes `blocks.csv`: one row per block and sample time, columns block,
-/// time, fx, fy, torque (the points' reaction on the block), x, y, angle
-/// (frame origin, rad), vx, vy, omega (centre of mass).
-pub fn write_blocks(path: &Path, log: &BlockLog) -> std::io::Result<()> {
-    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
-    writeln!(out, "block,time,fx,fy,torque,x,y,angle,vx,vy,omega")?;
-    for s in &log.samples {
-        let name = field(log.names.get(s.block as usize).map_or("?", String::as_str));
+/// `blocks.csv`: one row per block and sample time, columns block, time,
+/// fx, fy, torque (the points' reaction on the block), x, y, angle (frame
+/// origin, rad), vx, vy, omega (centre of mass).
+impl CsvSeries for BlockLog {
+    const HEADER: &'static str = "block,time,fx,fy,torque,x,y,angle,vx,vy,omega";
+
+    fn rows(&self) -> usize {
+        self.samples.len()
+    }
+
+    fn write_row(&self, k: usize, _: &[String], out: &mut dyn Write) -> std::io::Result<()> {
+        let s = &self.samples[k];
+        let name = field(self.names.get(s.block as usize).map_or("?", String::as_str));
         writeln!(
             out,
             "{name},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
@@ -161,9 +204,8 @@ pub fn write_blocks(path: &Path, log: &BlockLog) -> std::io::Result<()> {
             s.velocity.x,
             s.velocity.y,
             s.angular
-        )?;
+        )
     }
-    out.flush()
 }
 
 #[cfg(test)]

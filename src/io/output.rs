@@ -1,7 +1,7 @@
-//! The output folder of a run: VTK frames and the ParaView collections
-//! during the run; CSV series and PNG plots at the end.
+//! The output folder of a run: VTK frames, the ParaView collections and the
+//! CSV series during the run; PNG plots at the end.
 
-use super::csv;
+use super::csv::{self, CsvSeries};
 use super::manifest::{OutputManifest, located, partial_path};
 use super::plot::{Series, SeriesStyle, plot_points, plot_series};
 use super::vtk::{
@@ -13,6 +13,8 @@ use crate::resources::{BlockLog, BodyPairLog, EnergyLog, Grid, Probes, StageLog}
 use crate::scene::rules::file_safe;
 use crate::scene::{CurveSpec, Scene};
 use crate::simulation::Simulation;
+use std::fs::File;
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 /// The stems of the files a run writes into its folder besides the
@@ -37,16 +39,18 @@ pub const PROBE_PLOT_PREFIX: &str = "probe_";
 /// * `vtk/points_NNNNN.vtu` every frame interval and `points.pvd` (open this in ParaView);
 /// * with rigid blocks, their outlines: `vtk/blocks_NNNNN.vtu` and `blocks.pvd`, and `blocks.csv`;
 /// * `probes.csv`, `energy.csv`, with stages `stages.csv`, and with body
-///   contact laws `body_contacts.csv`;
+///   contact laws `body_contacts.csv`, appended to and flushed as the run
+///   records each sample, so that a run killed at any point keeps its
+///   series up to there;
 /// * `snapshot.png` (final state coloured by displacement magnitude),
 ///   `energy.png` and `probe_<name>_{velocity,displacement,stress}.png`;
 /// * `outputs.txt`, the list of these files ([`OutputManifest`]): a new run
 ///   into the folder first removes the files an earlier run listed (not
 ///   the checkpoint, which this writer does not write).
 ///
-/// Each file is written under a temporary name and renamed, so a run that
-/// fails while writing (a full disk) leaves no half-written file; errors
-/// name the file.
+/// Every other file is written under a temporary name and renamed, so a
+/// run that fails while writing (a full disk) leaves no half-written file;
+/// errors name the file.
 pub struct RunOutput {
     folder: Folder,
     frame_every: u64,
@@ -57,6 +61,116 @@ pub struct RunOutput {
     /// frame origin its block is placed at (where its displacement counts
     /// from; the block's first sample comes a probe interval later).
     curves: Vec<(CurveSpec, DVec2)>,
+    /// The CSV series, appended to as the run records them.
+    series: Vec<SeriesFile>,
+    /// The bodies' names in scene order, for the series that name them.
+    bodies: Vec<String>,
+}
+
+/// A record written as CSV while the run goes.
+#[derive(Clone, Copy, Debug)]
+enum Record {
+    Probes,
+    Energy,
+    Blocks,
+    BodyPairs,
+    Stages,
+}
+
+impl Record {
+    const ALL: [Self; 5] = [
+        Self::Probes,
+        Self::Energy,
+        Self::Blocks,
+        Self::BodyPairs,
+        Self::Stages,
+    ];
+
+    /// The file's name in the output folder.
+    fn file(self) -> &'static str {
+        match self {
+            Self::Probes => "probes.csv",
+            Self::Energy => "energy.csv",
+            Self::Blocks => "blocks.csv",
+            Self::BodyPairs => "body_contacts.csv",
+            Self::Stages => "stages.csv",
+        }
+    }
+
+    /// Whether the run writes this record: probes and energies always,
+    /// the others when the scene has blocks, body contact laws or stages.
+    fn kept(self, scene: &Scene) -> bool {
+        match self {
+            Self::Probes | Self::Energy => true,
+            Self::Blocks => !scene.blocks.is_empty(),
+            Self::BodyPairs => !scene.body_contacts.is_empty(),
+            Self::Stages => !scene.stages.is_empty(),
+        }
+    }
+
+    /// Applies `f` to the record in `world`, as a CSV series.
+    fn with<T>(self, world: &bevy_ecs::world::World, f: impl FnOnce(&dyn SeriesRows) -> T) -> T {
+        match self {
+            Self::Probes => f(world.resource::<Probes>()),
+            Self::Energy => f(world.resource::<EnergyLog>()),
+            Self::Blocks => f(world.resource::<BlockLog>()),
+            Self::BodyPairs => f(world.resource::<BodyPairLog>()),
+            Self::Stages => f(world.resource::<StageLog>()),
+        }
+    }
+}
+
+/// A [`CsvSeries`] behind a reference, whatever its type.
+trait SeriesRows {
+    fn header(&self) -> &'static str;
+    fn rows(&self) -> usize;
+    fn write_row(&self, k: usize, bodies: &[String], out: &mut dyn Write) -> std::io::Result<()>;
+}
+
+impl<S: CsvSeries> SeriesRows for S {
+    fn header(&self) -> &'static str {
+        S::HEADER
+    }
+    fn rows(&self) -> usize {
+        CsvSeries::rows(self)
+    }
+    fn write_row(&self, k: usize, bodies: &[String], out: &mut dyn Write) -> std::io::Result<()> {
+        CsvSeries::write_row(self, k, bodies, out)
+    }
+}
+
+/// One CSV series open for appending.
+struct SeriesFile {
+    record: Record,
+    path: PathBuf,
+    /// Rows written so far.
+    written: usize,
+    out: BufWriter<File>,
+}
+
+impl SeriesFile {
+    /// Appends the rows recorded since the last call and flushes them.
+    fn append(&mut self, world: &bevy_ecs::world::World, bodies: &[String]) -> std::io::Result<()> {
+        let Self {
+            record,
+            path,
+            written,
+            out,
+        } = self;
+        record
+            .with(world, |series| {
+                let rows = series.rows();
+                if rows <= *written {
+                    return Ok(());
+                }
+                for k in *written..rows {
+                    series.write_row(k, bodies, out)?;
+                }
+                *written = rows;
+                out.flush()
+            })
+            .map_err(|e| located(path, e))
+    }
 }
 
 /// The output folder and the list of the files written into it.
@@ -120,6 +234,7 @@ impl RunOutput {
         std::fs::create_dir_all(&vtk).map_err(|e| located(&vtk, e))?;
         let (manifest, removed) = OutputManifest::start(dir)?;
         let frame_every = frame_every(scene, sim);
+        let bodies = sim.bodies().into_iter().map(|(_, n)| n).collect();
         let mut output = Self {
             folder: Folder {
                 dir: dir.to_path_buf(),
@@ -130,7 +245,13 @@ impl RunOutput {
             block_frames: Vec::new(),
             buffers: FrameBuffers::default(),
             curves: placed_curves(scene),
+            series: Vec::new(),
+            bodies,
         };
+        for record in Record::ALL.into_iter().filter(|r| r.kept(scene)) {
+            let file = output.open_series(record, sim.world(), false)?;
+            output.series.push(file);
+        }
         output.write_frame(sim)?;
         Ok((output, removed))
     }
@@ -180,7 +301,7 @@ impl RunOutput {
                 clock.time
             )
         });
-        let output = Self {
+        let mut output = Self {
             folder: Folder {
                 dir: dir.to_path_buf(),
                 manifest: OutputManifest::resume(dir)?,
@@ -194,7 +315,14 @@ impl RunOutput {
             },
             buffers: FrameBuffers::default(),
             curves: placed_curves(scene),
+            series: Vec::new(),
+            bodies: scene.bodies.iter().map(|b| b.name.clone()).collect(),
         };
+        // The series as the checkpoint holds them, then appended to.
+        for record in Record::ALL.into_iter().filter(|r| r.kept(scene)) {
+            let file = output.open_series(record, sim.world(), true)?;
+            output.series.push(file);
+        }
         Ok((output, gaps))
     }
 
@@ -203,10 +331,65 @@ impl RunOutput {
         &self.folder.dir
     }
 
-    /// Call after every step: writes a frame when one is due.
+    /// Call after every step: appends the samples recorded in the step to
+    /// the CSV series, and writes a frame when one is due.
     pub fn after_step(&mut self, sim: &mut Simulation) -> std::io::Result<()> {
+        self.append_series(sim)?;
         if sim.clock().step.is_multiple_of(self.frame_every) {
             self.write_frame(sim)?;
+        }
+        Ok(())
+    }
+
+    /// Opens the CSV file of `record` with what `world` holds of it: a new
+    /// file, or for a resumed run (`whole`) the whole record written under
+    /// a temporary name and renamed, then opened for appending.
+    fn open_series(
+        &mut self,
+        record: Record,
+        world: &bevy_ecs::world::World,
+        whole: bool,
+    ) -> std::io::Result<SeriesFile> {
+        let path = self.folder.dir.join(record.file());
+        let bodies = &self.bodies;
+        let written = if whole {
+            self.folder.write_file(record.file(), |path| {
+                record.with(world, |series| {
+                    let mut out = BufWriter::new(File::create(path)?);
+                    writeln!(out, "{}", series.header())?;
+                    for k in 0..series.rows() {
+                        series.write_row(k, bodies, &mut out)?;
+                    }
+                    out.flush()
+                })
+            })?;
+            record.with(world, |series| series.rows())
+        } else {
+            self.folder.manifest.record(record.file())?;
+            let mut out = File::create(&path).map_err(|e| located(&path, e))?;
+            writeln!(out, "{}", record.with(world, |series| series.header()))
+                .map_err(|e| located(&path, e))?;
+            0
+        };
+        let out = std::fs::OpenOptions::new()
+            .append(true)
+            .open(&path)
+            .map_err(|e| located(&path, e))?;
+        let mut file = SeriesFile {
+            record,
+            path,
+            written,
+            out: BufWriter::new(out),
+        };
+        file.append(world, bodies)?;
+        Ok(file)
+    }
+
+    /// Appends the samples recorded since the last call to every series.
+    fn append_series(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        let world = sim.world();
+        for file in &mut self.series {
+            file.append(world, &self.bodies)?;
         }
         Ok(())
     }
@@ -220,30 +403,11 @@ impl RunOutput {
             self.write_frame(sim)?;
         }
         self.write_collections()?;
-        let body_names: Vec<String> = sim.bodies().into_iter().map(|(_, n)| n).collect();
+        self.append_series(sim)?;
         let world = sim.world();
         let probes = world.resource::<Probes>();
         let energy = world.resource::<EnergyLog>();
-        self.folder
-            .write_file("probes.csv", |path| csv::write_probes(path, probes))?;
-        self.folder
-            .write_file("energy.csv", |path| csv::write_energy(path, energy))?;
         let blocks = world.resource::<BlockLog>();
-        if !blocks.names.is_empty() {
-            self.folder
-                .write_file("blocks.csv", |path| csv::write_blocks(path, blocks))?;
-        }
-        let pairs = world.resource::<BodyPairLog>();
-        if !pairs.samples.is_empty() {
-            self.folder.write_file("body_contacts.csv", |path| {
-                csv::write_body_pairs(path, pairs, &body_names)
-            })?;
-        }
-        let stages = world.resource::<StageLog>();
-        if !stages.records.is_empty() {
-            self.folder
-                .write_file("stages.csv", |path| csv::write_stages(path, stages))?;
-        }
         let per = world
             .resource::<crate::resources::Settings>()
             .geometry
