@@ -28,6 +28,7 @@ pub mod materials;
 pub mod math;
 pub mod resources;
 pub mod rigid;
+pub mod runner;
 pub mod scene;
 pub mod shape_functions;
 mod simulation;

@@ -3,19 +3,27 @@
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use mpdem::io::RunOutput;
-use mpdem::resources::{StageLog, StagePlan};
+use mpdem::runner::{Progress, RunError, RunOptions, Runner, Start};
 use mpdem::scene::Scene;
 use mpdem::verify::{CASES, Case, CaseReport, Context, RunEvent, Verdict};
 use mpdem::{Simulation, bench, verify};
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
 
 /// Material point method with DEM-enriched contact (2D, plane strain).
+///
+/// Exit status: 0 when the command did what it was asked; 1 on an error
+/// (a refused scene, a failed run, an output that cannot be written; the
+/// message says which); 130 when a run was stopped by Ctrl-C, SIGTERM or
+/// SIGHUP (its results up to the stop are written). A closed standard
+/// output (`mpdem run ... | head`) drops what is printed and changes no
+/// status.
 #[derive(Parser)]
-#[command(version, about)]
+#[command(version, about, long_about)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -42,8 +50,16 @@ enum Command {
         checkpoint_every: Option<f64>,
         /// Carry on from OUT/checkpoint.bin, written by a run of the same
         /// scene (its time.end may have grown since), into the same folder.
-        #[arg(long)]
+        #[arg(long, conflicts_with = "restart")]
         resume: bool,
+        /// Start over in a folder that holds a checkpoint, removing it (a
+        /// run into such a folder is refused without --resume or --restart).
+        #[arg(long)]
+        restart: bool,
+        /// Replace the results another scene file's run wrote into the
+        /// folder (refused otherwise).
+        #[arg(long)]
+        overwrite: bool,
     },
     /// Validate a scene without running it.
     Check {
@@ -106,23 +122,36 @@ fn main() -> ExitCode {
             quiet,
             checkpoint_every,
             resume,
+            restart,
+            overwrite,
         } => with_threads(threads, || {
-            let checkpoints = Checkpoints {
-                every: checkpoint_every,
-                resume,
+            let start = match (resume, restart) {
+                (true, _) => Start::Resume,
+                (false, true) => Start::Restart,
+                (false, false) => Start::Fresh,
             };
-            run(&scene, out.as_deref(), quiet, checkpoints)
+            let request = RunRequest {
+                out: out.as_deref(),
+                quiet,
+                checkpoint_every,
+                start,
+                overwrite,
+            };
+            run(&scene, request)
         }),
-        Command::Check { scene } => check(&scene),
+        Command::Check { scene } => check(&scene).map_err(Failure::Error),
         Command::Bench {
             points,
             steps,
             threads,
             scene,
             warmup,
-        } => with_threads(threads, || match scene {
-            Some(path) => bench_scene(&path, warmup, steps),
-            None => run_bench(points as usize, warmup, steps),
+        } => with_threads(threads, || {
+            match scene {
+                Some(path) => bench_scene(&path, warmup, steps),
+                None => run_bench(points as usize, warmup, steps),
+            }
+            .map_err(Failure::Error)
         }),
         Command::Verify {
             cases,
@@ -133,47 +162,84 @@ fn main() -> ExitCode {
             quiet,
         } => {
             if list {
-                list_cases();
-                Ok(())
+                list_cases().map_err(Failure::Error)
             } else {
-                with_threads(threads, || verify(&cases, &scenes, &out, quiet))
+                with_threads(threads, || {
+                    verify(&cases, &scenes, &out, quiet).map_err(Failure::Error)
+                })
             }
         }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(message) if message.starts_with(STOPPED_BY_CTRL_C) => {
-            eprintln!("{message}");
-            ExitCode::from(130)
+        Err(Failure::Stopped(message)) => {
+            say_err(&message);
+            ExitCode::from(STOPPED_STATUS)
         }
-        Err(message) => {
-            eprintln!("error: {message}");
+        Err(Failure::Error(message)) => {
+            say_err(&format!("error: {message}"));
             ExitCode::FAILURE
         }
     }
+}
+
+/// The exit status of a run stopped by a signal, as a shell reports a
+/// command interrupted by Ctrl-C.
+const STOPPED_STATUS: u8 = 130;
+
+/// Why a command did not succeed.
+enum Failure {
+    /// A run stopped on request, its results written.
+    Stopped(String),
+    /// Anything else.
+    Error(String),
+}
+
+impl From<String> for Failure {
+    fn from(message: String) -> Self {
+        Self::Error(message)
+    }
+}
+
+/// Prints a line on standard output. A closed pipe (`| head`) drops it;
+/// any other failure (a full disk) is an error.
+fn say(line: &str) -> Result<(), String> {
+    match writeln!(std::io::stdout(), "{line}") {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(format!("cannot write to standard output: {e}"))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Prints a line on standard error; a failure there has nowhere to be
+/// told, so it is dropped.
+fn say_err(line: &str) {
+    let _ = writeln!(std::io::stderr(), "{line}");
 }
 
 /// Runs `f` on a rayon pool of `threads` workers (default: rayon's, one
 /// per core or `RAYON_NUM_THREADS`). The step runs on one of the pool's
 /// threads: work handed to the pool from outside it goes through a shared
 /// queue that allocates, work from inside does not.
-fn with_threads(
+fn with_threads<E: From<String> + Send>(
     threads: Option<usize>,
-    f: impl FnOnce() -> Result<(), String> + Send,
-) -> Result<(), String> {
+    f: impl FnOnce() -> Result<(), E> + Send,
+) -> Result<(), E> {
     // The main thread's usual stack, 8 MiB, for the scene parsing and
     // stepping that now run on a worker (rayon's default is 2 MiB).
     let mut pool = rayon::ThreadPoolBuilder::new().stack_size(8 << 20);
     match threads {
         None => {}
-        Some(0) => return Err("--threads must be at least 1".into()),
+        Some(0) => return Err(String::from("--threads must be at least 1").into()),
         Some(n) => pool = pool.num_threads(n),
     }
     pool.build()
         .map_err(|e| match threads {
             Some(n) => format!("cannot start {n} threads: {e}"),
             None => format!("cannot start the threads: {e}"),
-        })?
+        })
+        .map_err(E::from)?
         .install(f)
 }
 
@@ -181,209 +247,131 @@ fn check(path: &Path) -> Result<(), String> {
     let scene = Scene::load(path).map_err(|e| e.to_string())?;
     let sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
     for w in sim.warnings() {
-        eprintln!("warning: {w}");
+        say_err(&format!("warning: {w}"));
     }
     let clock = sim.clock();
     let geometry = match scene.settings.geometry {
         mpdem::resources::Geometry::PlaneStrain => "plane strain",
         mpdem::resources::Geometry::Axisymmetric => "axisymmetric, per radian",
     };
-    println!(
+    say(&format!(
         "{}: ok ({geometry}; bodies: {}, steps: {} of {:e} s)",
         path.display(),
         scene.bodies.len(),
         clock.total_steps(),
         clock.dt
-    );
+    ))?;
     Ok(())
 }
 
-/// How the message of a run stopped by Ctrl-C starts; the process then
-/// exits with status 130, as a shell reports an interrupted command.
-const STOPPED_BY_CTRL_C: &str = "stopped by Ctrl-C";
+/// How often a run whose standard error is not a terminal (a log file, a
+/// batch system) prints a progress line.
+const LOG_PROGRESS_EVERY: Duration = Duration::from_secs(15);
 
-/// The checkpoint's file name in the output folder.
-const CHECKPOINT_FILE: &str = "checkpoint.bin";
-
-/// What `mpdem run` does with checkpoints.
-struct Checkpoints {
-    /// Simulated time between two checkpoints (s), if any are written.
-    every: Option<f64>,
-    /// Start from the output folder's checkpoint.
-    resume: bool,
+/// What `mpdem run` was asked to do besides the scene.
+struct RunRequest<'a> {
+    out: Option<&'a Path>,
+    quiet: bool,
+    checkpoint_every: Option<f64>,
+    start: Start,
+    overwrite: bool,
 }
 
-fn run(
-    path: &Path,
-    out: Option<&Path>,
-    quiet: bool,
-    checkpoints: Checkpoints,
-) -> Result<(), String> {
-    if checkpoints
-        .every
-        .is_some_and(|t| !(t.is_finite() && t > 0.0))
-    {
-        return Err("--checkpoint-every must be a positive time in seconds".into());
-    }
-    let scene = Scene::load(path).map_err(|e| e.to_string())?;
-    let dir = out.map_or_else(
+fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
+    let scene = Scene::load(path).map_err(|e| Failure::Error(e.to_string()))?;
+    let out = request.out.map_or_else(
         || Path::new("out").join(scene.display_name()),
         Path::to_path_buf,
     );
-    let checkpoint = dir.join(CHECKPOINT_FILE);
-    let mut sim = if checkpoints.resume {
-        if !checkpoint.is_file() {
-            return Err(format!(
-                "--resume: no checkpoint at {}; a run writes one when given --checkpoint-every T",
-                checkpoint.display()
+    let options = RunOptions {
+        out,
+        checkpoint_every: request.checkpoint_every,
+        start: request.start,
+        replace_other_scene: request.overwrite,
+    };
+    let mut runner =
+        Runner::new(&scene, Some(path), options).map_err(|e| Failure::Error(e.to_string()))?;
+    for w in runner.warnings() {
+        say_err(&format!("warning: {w}"));
+    }
+    let stop = stop_on_signals();
+    let bar = progress_bar(
+        0,
+        request.quiet,
+        "{bar:40} {msg} elapsed {elapsed} ETA {eta}",
+    );
+    let log_lines = !request.quiet && !std::io::stderr().is_terminal();
+    let mut last_line = Instant::now();
+    let result = runner.run(&stop, |p| {
+        let stage = p.stage.map_or(String::new(), |s| format!(", stage '{s}'"));
+        let of = match p.stage {
+            Some(_) => format!("at most {}", p.length),
+            None => p.length.to_string(),
+        };
+        let message = format!("step {}/{of} t = {:.4e} s{stage}", p.step, p.time);
+        bar.set_length(p.length);
+        bar.set_position(p.step);
+        bar.set_message(message.clone());
+        if log_lines && (last_line.elapsed() >= LOG_PROGRESS_EVERY || p.step >= p.length) {
+            last_line = Instant::now();
+            say_err(&format!(
+                "{message}, elapsed {}, ETA {}",
+                clock_time(p.elapsed),
+                eta(p).map_or("-".into(), clock_time)
             ));
         }
-        Simulation::resume(&scene, &checkpoint).map_err(|e| e.to_string())?
-    } else {
-        Simulation::from_scene(&scene).map_err(|e| e.to_string())?
-    };
-    for w in sim.warnings() {
-        eprintln!("warning: {w}");
+    });
+    bar.finish_and_clear();
+    for notice in runner.notices() {
+        say_err(notice);
     }
-    let clock = sim.clock();
-    if checkpoints.resume && clock.step > clock.total_steps() {
-        return Err(format!(
-            "{}: the checkpoint is at step {} (t = {:.6e} s), past the scene's end at step {} (time.end = {:e} s): nothing to run; give a later time.end to carry the run on",
-            checkpoint.display(),
-            clock.step,
-            clock.time,
-            clock.total_steps(),
-            clock.end
-        ));
+    match result {
+        Ok(summary) => say(&format!(
+            "{}: {} steps to t = {:.6} s in {:.1} s; state hash {:016x}; results in {}",
+            summary.name,
+            summary.steps,
+            summary.time,
+            summary.elapsed.as_secs_f64(),
+            summary.state_hash,
+            summary.dir.display()
+        ))
+        .map_err(Failure::Error),
+        Err(e @ RunError::Stopped { .. }) => Err(Failure::Stopped(e.to_string())),
+        Err(e) => Err(Failure::Error(e.to_string())),
     }
-    let mut output = if checkpoints.resume {
-        eprintln!(
-            "resuming at step {} (t = {:.6e} s) from {}",
-            clock.step,
-            clock.time,
-            checkpoint.display()
-        );
-        let (output, gaps) = RunOutput::resume(&dir, &scene, &sim, &checkpoint)
-            .map_err(|e| format!("{}: cannot carry on the output: {e}", dir.display()))?;
-        if let Some(gaps) = gaps {
-            eprintln!("warning: {gaps}");
-        }
-        output
-    } else {
-        let (output, removed) = RunOutput::create(&dir, &scene, &mut sim)
-            .map_err(|e| format!("cannot write the output: {e}"))?;
-        if removed > 0 {
-            eprintln!(
-                "removed the {removed} files an earlier run wrote into {} (listed in its outputs.txt)",
-                dir.display()
-            );
-        }
-        output
-    };
-    let checkpoint_steps = checkpoints
-        .every
-        .map(|t| mpdem::scene::whole_steps(t, clock.dt));
-    let total = clock.total_steps();
-    let progress = progress_bar(total, quiet, "{bar:40} {msg} elapsed {elapsed} ETA {eta}");
-    progress.set_position(clock.step);
-    let (message, length) = progress_message(&sim, total);
-    progress.set_length(length);
-    progress.set_message(message);
-    progress.reset_eta();
-    let started = std::time::Instant::now();
-    let interrupted = stop_on_ctrl_c();
-    let mut failure = None;
-    while !sim.clock().finished() {
-        if let Err(e) = sim.step() {
-            failure = Some(e.to_string());
-            break;
-        }
-        let now = sim.clock();
-        let at =
-            |e: &dyn std::fmt::Display| format!("step {} (t = {:.6e} s): {e}", now.step, now.time);
-        if let Err(e) = output.after_step(&mut sim) {
-            failure = Some(format!("cannot write a frame at {}", at(&e)));
-            break;
-        }
-        if checkpoint_steps.is_some_and(|n| now.step.is_multiple_of(n) || now.finished())
-            && let Err(e) = sim.write_checkpoint(&checkpoint)
-        {
-            failure = Some(format!("cannot write the checkpoint at {}", at(&e)));
-            break;
-        }
-        if interrupted.load(Ordering::SeqCst) {
-            break;
-        }
-        if now.step % 64 == 0 || now.finished() {
-            // The message carries the step with its time (the bar's own
-            // position may be drawn a refresh apart from the message).
-            progress.set_position(now.step);
-            let (message, length) = progress_message(&sim, total);
-            progress.set_length(length);
-            progress.set_message(message);
-        }
-    }
-    progress.finish_and_clear();
-    for w in &sim.world().resource::<StageLog>().warnings {
-        eprintln!("warning: {w}");
-    }
-    if let Err(e) = output.finish(&mut sim, failure.is_some()) {
-        let written = format!("cannot write the output: {e}");
-        return Err(match failure {
-            Some(f) => format!("{f}\n{written}"),
-            None => written,
-        });
-    }
-    if let Some(message) = failure {
-        return Err(format!(
-            "{message}\nresults up to the failure are in {}",
-            dir.display()
-        ));
-    }
-    let now = sim.clock();
-    if !now.finished() {
-        let resume = if checkpoint_steps.is_some() {
-            match sim.write_checkpoint(&checkpoint) {
-                Ok(()) => "; `--resume` carries it on".to_string(),
-                Err(e) => format!("; the checkpoint could not be written: {e}"),
-            }
-        } else {
-            String::new()
-        };
-        return Err(format!(
-            "{STOPPED_BY_CTRL_C} at step {} (t = {:.6e} s); results up to there are in {}{resume}",
-            now.step,
-            now.time,
-            dir.display()
-        ));
-    }
-    let hash = sim.state_hash();
-    println!(
-        "{}: {} steps to t = {:.6} s in {:.1} s; state hash {hash:016x}; results in {}",
-        sim.name(),
-        now.step,
-        now.time,
-        started.elapsed().as_secs_f64(),
-        output.dir().display()
-    );
-    Ok(())
 }
 
-/// A flag a first Ctrl-C raises, so that the run stops after its step and
-/// writes its results (and a checkpoint, if it writes them); a second
-/// Ctrl-C ends the process at once, as without the handler.
-fn stop_on_ctrl_c() -> Arc<AtomicBool> {
-    let interrupted = Arc::new(AtomicBool::new(false));
-    let flag = Arc::clone(&interrupted);
+/// The time left at the run's mean pace so far, once it has one.
+fn eta(p: &Progress) -> Option<Duration> {
+    (p.step > 0 && p.length > p.step).then(|| {
+        p.elapsed
+            .mul_f64((p.length - p.step) as f64 / p.step as f64)
+    })
+}
+
+/// A duration as h:mm:ss.
+fn clock_time(d: Duration) -> String {
+    let s = d.as_secs();
+    format!("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
+}
+
+/// A flag the first Ctrl-C, SIGTERM or SIGHUP raises, so that the run
+/// stops after its step and writes its results (and a checkpoint, if it
+/// writes them); a second one ends the process at once.
+fn stop_on_signals() -> Arc<AtomicBool> {
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = Arc::clone(&stop);
     let handler = ctrlc::set_handler(move || {
         if flag.swap(true, Ordering::SeqCst) {
-            std::process::exit(130);
+            std::process::exit(STOPPED_STATUS.into());
         }
     });
     if let Err(e) = handler {
-        eprintln!("warning: Ctrl-C will end the run without writing its results: {e}");
+        say_err(&format!(
+            "warning: a stop signal will end the run without writing its results: {e}"
+        ));
     }
-    interrupted
+    stop
 }
 
 /// A progress bar on stderr drawn with `template` (indicatif's), hidden
@@ -410,7 +398,7 @@ fn bench_scene(path: &Path, warmup: u64, steps: u64) -> Result<(), String> {
     for (label, scene) in runs {
         let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
         let t = bench::measure(&mut sim, warmup, steps).map_err(|e| e.to_string())?;
-        println!(
+        say(&format!(
             "{}{label}: {} points, {} steps after {warmup}, {}: {:.3} s, {:.2} M particle-updates/s",
             sim.name(),
             t.points,
@@ -418,39 +406,9 @@ fn bench_scene(path: &Path, warmup: u64, steps: u64) -> Result<(), String> {
             bench::threads_label(),
             t.seconds,
             t.updates_per_second() / 1e6
-        );
+        ))?;
     }
     Ok(())
-}
-
-/// The progress bar's message and length: the step of the run's `total`
-/// steps, the time and the stage in progress. With stages the run may end
-/// before `time.end`: the length is then the most steps the stages can
-/// take (each at its `Duration` or `max_time`), within `total`.
-fn progress_message(sim: &Simulation, total: u64) -> (String, u64) {
-    let clock = sim.clock();
-    let Some((name, cap)) = sim.world().get_resource::<StagePlan>().and_then(|plan| {
-        let stages = &plan.scene.stages;
-        let current = stages.get(plan.progress.current)?;
-        // The latest the stages can end: the current one's start and every
-        // stage from it at its longest.
-        let started = (plan.progress.started / clock.dt).round() as u64;
-        let latest = stages[plan.progress.current..]
-            .iter()
-            .fold(started, |steps, s| {
-                steps.saturating_add(s.end.most_steps(clock.dt))
-            });
-        let cap = latest.clamp(clock.step, total);
-        Some((current.name.clone(), cap))
-    }) else {
-        let message = format!("step {}/{total} t = {:.4e} s", clock.step, clock.time);
-        return (message, total);
-    };
-    let message = format!(
-        "step {}/at most {cap} t = {:.4e} s, stage '{name}'",
-        clock.step, clock.time
-    );
-    (message, cap)
 }
 
 fn run_bench(points: usize, warmup: u64, steps: u64) -> Result<(), String> {
@@ -468,33 +426,34 @@ fn run_bench(points: usize, warmup: u64, steps: u64) -> Result<(), String> {
     for (label, scene) in scenes {
         let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
         let t = bench::measure(&mut sim, warmup, steps).map_err(|e| e.to_string())?;
-        println!(
+        say(&format!(
             "{label}: {} points, {} steps, {}: {:.3} s, {:.2} M particle-updates/s",
             t.points,
             t.steps,
             bench::threads_label(),
             t.seconds,
             t.updates_per_second() / 1e6
-        );
+        ))?;
         rates.push(t.seconds / t.steps as f64);
     }
-    println!(
+    say(&format!(
         "contact adds {:+.1}% to the step",
         100.0 * (rates[1] / rates[0] - 1.0)
-    );
+    ))?;
     Ok(())
 }
 
-fn list_cases() {
+fn list_cases() -> Result<(), String> {
     let width = |f: fn(&Case) -> &str| CASES.iter().map(|c| f(c).chars().count()).max();
     let name = width(|c| c.name).unwrap_or(0);
     let source = width(|c| c.source).unwrap_or(0);
     for case in CASES {
-        println!(
+        say(&format!(
             "{:<name$} {:<source$} ~{:>4.1} min  {}",
             case.name, case.source, case.minutes, case.about
-        );
+        ))?;
     }
+    Ok(())
 }
 
 fn verify(names: &[String], scenes: &Path, out: &Path, quiet: bool) -> Result<(), String> {
@@ -537,13 +496,13 @@ fn verify(names: &[String], scenes: &Path, out: &Path, quiet: bool) -> Result<()
     let mut reports = Vec::new();
     for case in cases {
         let minutes = case.minutes;
-        eprintln!(
+        say_err(&format!(
             "{} ({}): {}, about {minutes} min",
             case.name, case.source, case.about
-        );
+        ));
         let report = CaseReport::run(case, &ctx);
         progress.finish_and_clear();
-        print!("{report}");
+        say(report.to_string().trim_end_matches('\n'))?;
         reports.push(report);
         verify::write_table(&table, &reports)
             .map_err(|e| format!("{}: cannot write the table: {e}", table.display()))?;
@@ -561,14 +520,14 @@ fn verify(names: &[String], scenes: &Path, out: &Path, quiet: bool) -> Result<()
         .map(|r| r.case)
         .collect();
     let missed = count(Verdict::Missed);
-    println!(
+    say(&format!(
         "verify: {} cases; {} checks met, {missed} missed, {} reported; {} cases could not be measured; table in {}",
         reports.len(),
         count(Verdict::Met),
         count(Verdict::Reported),
         failed.len(),
         table.display()
-    );
+    ))?;
     let mut problems = Vec::new();
     if missed > 0 {
         problems.push(format!("{missed} checks missed their target"));

@@ -156,9 +156,47 @@ fn a_new_run_into_a_folder_removes_the_earlier_runs_files_and_no_others() {
     };
     run(&long, &["--checkpoint-every", "0.01"]);
     assert!(out.join("vtk/points_00005.vtu").is_file());
+    let checkpoint = std::fs::read(out.join("checkpoint.bin")).unwrap();
     std::fs::write(out.join("notes.txt"), "the user's").unwrap();
     std::fs::write(out.join("vtk/mine.vtu"), "the user's").unwrap();
-    run(&short, &[]);
+    // Refused, nothing touched: the same scene again without --resume (a
+    // mistaken rerun would replace the checkpoint with an earlier one), and
+    // another scene file into this one's folder.
+    let refused = |scene: &std::path::Path, extra: &[&str], expected: &[&str]| {
+        let result = run_into(scene, &out, extra);
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert_eq!(result.status.code(), Some(1), "{stderr}");
+        for text in expected {
+            assert!(stderr.contains(text), "'{text}' not in: {stderr}");
+        }
+        assert_eq!(
+            std::fs::read(out.join("checkpoint.bin")).unwrap(),
+            checkpoint
+        );
+        assert!(out.join("vtk/points_00005.vtu").is_file());
+    };
+    refused(
+        &long,
+        &["--checkpoint-every", "0.01"],
+        &[
+            "holds a checkpoint of an earlier run",
+            "--resume",
+            "--restart",
+        ],
+    );
+    refused(
+        &short,
+        &["--restart"],
+        &[
+            "holds the results of",
+            "rerun-long",
+            "not of",
+            "rerun-short",
+            "--overwrite",
+        ],
+    );
+    // Asked to: the earlier run's files go, the user's stay.
+    run(&short, &["--restart", "--overwrite"]);
     let frames: Vec<String> = std::fs::read_dir(out.join("vtk"))
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
@@ -169,10 +207,7 @@ fn a_new_run_into_a_folder_removes_the_earlier_runs_files_and_no_others() {
         3,
         "frames at 0, 0.01, 0.02 s only: {frames:?}"
     );
-    assert!(
-        out.join("checkpoint.bin").is_file(),
-        "the earlier run's checkpoint was removed: a run started without --resume by mistake must not lose it"
-    );
+    assert!(!out.join("checkpoint.bin").exists(), "--restart removes it");
     assert!(out.join("notes.txt").is_file() && out.join("vtk/mine.vtu").is_file());
     let listed = std::fs::read_to_string(out.join("outputs.txt")).unwrap();
     assert!(
@@ -180,9 +215,18 @@ fn a_new_run_into_a_folder_removes_the_earlier_runs_files_and_no_others() {
         "{listed}"
     );
     assert!(!listed.contains("points_00003"), "{listed}");
-    // The kept checkpoint (0.05 s) carried on to 0.07 s: the frames before
-    // it are the second run's (0, 0.01, 0.02 s), written after it; a
-    // warning says so.
+    // The first run's checkpoint (0.05 s) put back and carried on to
+    // 0.07 s: the frames before it are the second run's (0, 0.01, 0.02 s),
+    // written after it; a warning says so.
+    std::fs::write(out.join("checkpoint.bin"), &checkpoint).unwrap();
+    let written = std::fs::metadata(out.join("checkpoint.bin"))
+        .and_then(|m| m.modified())
+        .unwrap();
+    std::fs::File::options()
+        .write(true)
+        .open(out.join("vtk/points_00000.vtu"))
+        .and_then(|f| f.set_modified(written + std::time::Duration::from_secs(60)))
+        .unwrap();
     let (later_base, later) = common::edited_wave_scene("rerun-later", "end: 1.0", "end: 0.07");
     let result = run_into(&later, &out, &["--resume"]);
     let stderr = String::from_utf8_lossy(&result.stderr);
@@ -210,11 +254,13 @@ fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outp
     assert!(resumed.join("checkpoint.bin").is_file());
     // The folder then holds frames past the checkpoint (0.055 s), as after a
     // run stopped later than its last checkpoint: the resumed run drops
-    // them from the collection and writes them again. (A new run into the
-    // folder keeps the checkpoint.) That run's first frame is dated before
-    // the checkpoint, as the frames of the run that wrote it are: a resume
-    // warns when they were written after it.
-    printed_hash(&run(&long, &resumed, &[]));
+    // them from the collection and writes them again. (The longer scene run
+    // over it, the checkpoint put back.) That run's first frame is dated
+    // before the checkpoint, as the frames of the run that wrote it are: a
+    // resume warns when they were written after it.
+    let checkpoint = std::fs::read(resumed.join("checkpoint.bin")).unwrap();
+    printed_hash(&run(&long, &resumed, &["--restart", "--overwrite"]));
+    std::fs::write(resumed.join("checkpoint.bin"), checkpoint).unwrap();
     let written = std::fs::metadata(resumed.join("checkpoint.bin"))
         .and_then(|m| m.modified())
         .unwrap();
@@ -263,7 +309,7 @@ fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outp
     let result = run(&long, &empty, &["--checkpoint-every", "0"]);
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert!(
-        stderr.contains("--checkpoint-every must be a positive time"),
+        stderr.contains("the checkpoint interval must be a positive time in seconds, got 0"),
         "{stderr}"
     );
 }
@@ -361,7 +407,7 @@ fn ctrl_c_stops_the_run_after_its_step_and_writes_its_results_and_a_checkpoint()
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert_eq!(result.status.code(), Some(130), "{stderr}");
     assert!(
-        stderr.contains("stopped by Ctrl-C at step") && stderr.contains("`--resume` carries it on"),
+        stderr.contains("stopped at step") && stderr.contains("`--resume` carries it on"),
         "{stderr}"
     );
     // The series end where the run stopped, and the checkpoint is there.

@@ -23,6 +23,10 @@ pub const MANIFEST_FILE: &str = "outputs.txt";
 pub const SIGNATURE: &str =
     "# mpdem: the files this run wrote; a new run into this folder removes them";
 
+/// The start of the list's second line, which names the scene file whose
+/// run wrote the folder (absolute), when the run had one.
+pub const SCENE_PREFIX: &str = "# scene: ";
+
 /// The start of the temporary names files are written under before they
 /// are renamed into place (see `RunOutput`): one left by a run killed while
 /// writing is removed by the next run.
@@ -47,9 +51,9 @@ pub struct OutputManifest {
 impl OutputManifest {
     /// Starts a new run's list in `dir` (and in its `vtk/`): removes every
     /// regular file an earlier run's list names and every temporary file a
-    /// killed run left, then starts the list anew. Returns how many files
-    /// were removed.
-    pub fn start(dir: &Path) -> std::io::Result<(Self, usize)> {
+    /// killed run left, then starts the list anew, naming the `scene` file
+    /// the run is of (if any). Returns how many files were removed.
+    pub fn start(dir: &Path, scene: Option<&Path>) -> std::io::Result<(Self, usize)> {
         let mut doomed: Vec<PathBuf> = read_list(dir)?.iter().map(|n| dir.join(n)).collect();
         for folder in [dir.to_path_buf(), dir.join("vtk")] {
             let Ok(entries) = std::fs::read_dir(&folder) else {
@@ -77,6 +81,9 @@ impl OutputManifest {
         let path = dir.join(MANIFEST_FILE);
         let mut file = File::create(&path).map_err(|e| located(&path, e))?;
         writeln!(file, "{SIGNATURE}").map_err(|e| located(&path, e))?;
+        if let Some(scene) = scene {
+            writeln!(file, "{SCENE_PREFIX}{}", scene.display()).map_err(|e| located(&path, e))?;
+        }
         let manifest = Self {
             dir: dir.to_path_buf(),
             listed: BTreeSet::new(),
@@ -118,6 +125,26 @@ impl OutputManifest {
     }
 }
 
+/// The scene file whose run wrote the folder `dir`, as its list names it:
+/// none without a list or without that line (a scene built in code, or a
+/// folder of an earlier version).
+pub fn written_by(dir: &Path) -> std::io::Result<Option<PathBuf>> {
+    let path = dir.join(MANIFEST_FILE);
+    let file = match File::open(&path) {
+        Ok(file) => file,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(located(&path, e)),
+    };
+    let mut lines = BufReader::new(file).lines();
+    if !matches!(lines.next(), Some(Ok(first)) if first == SIGNATURE) {
+        return Ok(None);
+    }
+    Ok(match lines.next() {
+        Some(Ok(line)) => line.strip_prefix(SCENE_PREFIX).map(PathBuf::from),
+        _ => None,
+    })
+}
+
 /// The names an earlier run listed in `dir`: none without a list (or with
 /// an empty one). A list that does not start with [`SIGNATURE`] is not
 /// mpdem's: an error, so that it is neither followed nor overwritten. A line that is
@@ -149,6 +176,9 @@ fn read_list(dir: &Path) -> std::io::Result<Vec<String>> {
     let mut names = Vec::new();
     for line in lines {
         let line = line.map_err(|e| located(&path, e))?;
+        if line.starts_with('#') {
+            continue;
+        }
         let inside = Path::new(&line)
             .components()
             .all(|c| matches!(c, Component::Normal(_)));
@@ -178,7 +208,7 @@ mod tests {
     #[test]
     fn a_new_run_removes_the_files_the_last_run_listed_and_no_others() {
         let dir = folder("new");
-        let (mut first, removed) = OutputManifest::start(&dir).unwrap();
+        let (mut first, removed) = OutputManifest::start(&dir, None).unwrap();
         assert_eq!(removed, 0);
         for name in ["energy.csv", "vtk/points_00000.vtu", "vtk/points_00001.vtu"] {
             first.record(name).unwrap();
@@ -208,7 +238,7 @@ mod tests {
             .record("kept")
             .unwrap();
 
-        let (_, removed) = OutputManifest::start(&dir).unwrap();
+        let (_, removed) = OutputManifest::start(&dir, None).unwrap();
         assert_eq!(removed, 6);
         assert!(!dir.join("vtk/.partial-points_00003.vtu").exists());
         assert!(!checkpoint.exists());
@@ -239,7 +269,7 @@ mod tests {
             format!("{SIGNATURE}\n{escape}\n{}\n", outside.display()),
         )
         .unwrap();
-        let (_, removed) = OutputManifest::start(&dir).unwrap();
+        let (_, removed) = OutputManifest::start(&dir, None).unwrap();
         assert_eq!(removed, 0);
         assert!(outside.is_file());
         std::fs::remove_file(&outside).ok();
@@ -252,7 +282,7 @@ mod tests {
         let foreign = "thesis.tex\nfigures/plot.pdf\n";
         std::fs::write(dir.join(MANIFEST_FILE), foreign).unwrap();
         std::fs::write(dir.join("thesis.tex"), "the user's").unwrap();
-        let refusal = OutputManifest::start(&dir)
+        let refusal = OutputManifest::start(&dir, None)
             .err()
             .expect("a foreign list was taken over");
         assert!(

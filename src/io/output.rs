@@ -225,14 +225,17 @@ impl RunOutput {
     /// earlier run into it listed, and writes frame 0. Frames follow the
     /// `scene`'s frame interval; its curves are written at the end. Returns
     /// the output and how many of the earlier run's files were removed.
+    /// `source` is the scene's file, if it has one: the folder's list
+    /// names it.
     pub fn create(
         dir: &Path,
         scene: &Scene,
+        source: Option<&Path>,
         sim: &mut Simulation,
     ) -> std::io::Result<(Self, usize)> {
         let vtk = dir.join("vtk");
         std::fs::create_dir_all(&vtk).map_err(|e| located(&vtk, e))?;
-        let (manifest, removed) = OutputManifest::start(dir)?;
+        let (manifest, removed) = OutputManifest::start(dir, source)?;
         let frame_every = frame_every(scene, sim);
         let bodies = sim.bodies().into_iter().map(|(_, n)| n).collect();
         let mut output = Self {
@@ -742,7 +745,7 @@ mod tests {
     fn a_curve_counts_the_displacement_from_where_its_block_was_placed() {
         let dir = std::env::temp_dir().join(format!("mpdem-curve-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
-        let (manifest, _) = OutputManifest::start(&dir).unwrap();
+        let (manifest, _) = OutputManifest::start(&dir, None).unwrap();
         let mut folder = Folder {
             dir: dir.clone(),
             manifest,

@@ -1,0 +1,460 @@
+//! Runs a scene to its end with everything a run writes: the frames and
+//! CSV series as it goes, checkpoints, the plots at the end, and a clean
+//! stop on request.
+//!
+//! ```no_run
+//! use mpdem::runner::{RunOptions, Runner};
+//! use std::sync::atomic::AtomicBool;
+//!
+//! let path = std::path::Path::new("scenes/wave_1d.ron");
+//! let scene = mpdem::scene::Scene::load(path)?;
+//! let mut runner = Runner::new(&scene, Some(path), RunOptions::into_folder("out/wave_1d"))?;
+//! let summary = runner.run(&AtomicBool::new(false), |_| {})?;
+//! println!("state hash {:016x}", summary.state_hash);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use crate::io::RunOutput;
+use crate::io::checkpoint::CheckpointError;
+use crate::io::manifest::written_by;
+use crate::math::Real;
+use crate::resources::{StageLog, StagePlan};
+use crate::scene::{Scene, SceneError, whole_steps};
+use crate::simulation::Simulation;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+/// The checkpoint's file name in the output folder.
+pub const CHECKPOINT_FILE: &str = "checkpoint.bin";
+
+/// What to do with a checkpoint in the output folder.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Start {
+    /// Start at the scene's beginning; a checkpoint in the folder refuses
+    /// the run, so that a mistaken rerun cannot replace it.
+    #[default]
+    Fresh,
+    /// Carry on from the folder's checkpoint.
+    Resume,
+    /// Start at the beginning and remove the folder's checkpoint.
+    Restart,
+}
+
+/// How a run writes its results.
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// The output folder.
+    pub out: PathBuf,
+    /// Simulated time between checkpoints (s); none are written without it.
+    pub checkpoint_every: Option<Real>,
+    /// What to do with a checkpoint in the folder.
+    pub start: Start,
+    /// Clear a folder that another scene file's run wrote (refused
+    /// otherwise).
+    pub replace_other_scene: bool,
+}
+
+impl RunOptions {
+    /// A fresh run into `out`, without checkpoints.
+    pub fn into_folder(out: impl Into<PathBuf>) -> Self {
+        Self {
+            out: out.into(),
+            checkpoint_every: None,
+            start: Start::Fresh,
+            replace_other_scene: false,
+        }
+    }
+}
+
+/// Why a run did not reach its end.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// The scene could not be built.
+    #[error("{0}")]
+    Scene(#[from] SceneError),
+    /// The checkpoint could not be read or written.
+    #[error("{0}")]
+    Checkpoint(#[from] CheckpointError),
+    /// The checkpoint interval is not a positive time.
+    #[error("the checkpoint interval must be a positive time in seconds, got {0}")]
+    CheckpointInterval(Real),
+    /// `Start::Resume` without a checkpoint in the folder.
+    #[error(
+        "no checkpoint at {}: a run writes one when given a checkpoint interval (--checkpoint-every T)",
+        .0.display()
+    )]
+    NoCheckpoint(PathBuf),
+    /// A fresh run into a folder holding a checkpoint.
+    #[error(
+        "{} holds a checkpoint of an earlier run: --resume carries that run on; --restart starts over and removes it",
+        .0.display()
+    )]
+    CheckpointInTheWay(PathBuf),
+    /// The folder holds the results of another scene file's run.
+    #[error(
+        "{} holds the results of {}, not of {}: choose another folder (--out), or --overwrite to replace them",
+        dir.display(),
+        theirs.display(),
+        ours.display()
+    )]
+    OtherScenesFolder {
+        /// The output folder.
+        dir: PathBuf,
+        /// The scene file whose run wrote it.
+        theirs: PathBuf,
+        /// The scene file of this run.
+        ours: PathBuf,
+    },
+    /// The checkpoint is at or past the scene's end.
+    #[error(
+        "{}: the checkpoint is at step {step} (t = {time:.6e} s), past the scene's end at step {end_step} (time.end = {end:e} s): nothing to run; give a later time.end to carry the run on",
+        path.display()
+    )]
+    PastTheEnd {
+        /// The checkpoint.
+        path: PathBuf,
+        /// Its step and time.
+        step: u64,
+        /// Its time (s).
+        time: Real,
+        /// The scene's last step.
+        end_step: u64,
+        /// The scene's end time (s).
+        end: Real,
+    },
+    /// Writing the results failed.
+    #[error("cannot write the output: {0}")]
+    Output(std::io::Error),
+    /// A step failed (a numerical breakdown, an output that could not be
+    /// written mid-run); the results up to it are written.
+    #[error("{message}\nresults up to the failure are in {}", dir.display())]
+    Failed {
+        /// What failed, at which step.
+        message: String,
+        /// The output folder.
+        dir: PathBuf,
+    },
+    /// The run was asked to stop; the results up to the step it stopped at
+    /// are written (and a checkpoint, if the run writes them).
+    #[error(
+        "stopped at step {step} (t = {time:.6e} s); results up to there are in {}{}",
+        dir.display(),
+        match checkpoint {
+            Some(Ok(())) => "; `--resume` carries it on".to_string(),
+            Some(Err(e)) => format!("; the checkpoint could not be written: {e}"),
+            None => String::new(),
+        }
+    )]
+    Stopped {
+        /// The last step taken.
+        step: u64,
+        /// Its time (s).
+        time: Real,
+        /// The output folder.
+        dir: PathBuf,
+        /// Whether a checkpoint was written at the stop, if the run writes
+        /// them.
+        checkpoint: Option<Result<(), String>>,
+    },
+}
+
+/// Where a run is, as reported to its progress callback.
+#[derive(Clone, Debug)]
+pub struct Progress<'a> {
+    /// Steps taken.
+    pub step: u64,
+    /// The most steps the run can take: the scene's, or fewer when stages
+    /// may end it before `time.end` (each at its `Duration` or `max_time`).
+    pub length: u64,
+    /// Simulated time (s).
+    pub time: Real,
+    /// The stage in progress, if the scene has stages.
+    pub stage: Option<&'a str>,
+    /// Wall time since the run started.
+    pub elapsed: Duration,
+}
+
+/// What a finished run reached.
+#[derive(Clone, Debug)]
+pub struct RunSummary {
+    /// The scene's name.
+    pub name: String,
+    /// Steps taken.
+    pub steps: u64,
+    /// Simulated time reached (s).
+    pub time: Real,
+    /// The final state's hash (see [`Simulation::state_hash`]).
+    pub state_hash: u64,
+    /// Wall time of the run.
+    pub elapsed: Duration,
+    /// The output folder.
+    pub dir: PathBuf,
+}
+
+/// A scene's run and its output folder. Build it with [`Runner::new`], add
+/// user systems through [`Runner::simulation_mut`], then [`Runner::run`].
+pub struct Runner {
+    scene: Scene,
+    source: Option<PathBuf>,
+    options: RunOptions,
+    sim: Simulation,
+    notices: Vec<String>,
+}
+
+impl Runner {
+    /// Builds the scene's simulation for a run into `options.out`, after
+    /// checking that the run may write there: a fresh run refuses a folder
+    /// holding a checkpoint, and any folder another scene file's run
+    /// wrote (unless `replace_other_scene`); a resumed run needs the
+    /// checkpoint. `source` is the scene's file, if it has one. Nothing is
+    /// written yet.
+    pub fn new(
+        scene: &Scene,
+        source: Option<&Path>,
+        options: RunOptions,
+    ) -> Result<Self, RunError> {
+        if let Some(t) = options.checkpoint_every
+            && !(t.is_finite() && t > 0.0)
+        {
+            return Err(RunError::CheckpointInterval(t));
+        }
+        let checkpoint = options.out.join(CHECKPOINT_FILE);
+        match options.start {
+            Start::Fresh if checkpoint.exists() => {
+                return Err(RunError::CheckpointInTheWay(checkpoint));
+            }
+            Start::Resume if !checkpoint.is_file() => {
+                return Err(RunError::NoCheckpoint(checkpoint));
+            }
+            _ => {}
+        }
+        let source = source.map(|path| std::path::absolute(path).unwrap_or(path.to_path_buf()));
+        if options.start != Start::Resume
+            && !options.replace_other_scene
+            && let Some(ours) = &source
+            && let Some(theirs) = written_by(&options.out).map_err(RunError::Output)?
+            && &theirs != ours
+        {
+            return Err(RunError::OtherScenesFolder {
+                dir: options.out.clone(),
+                theirs,
+                ours: ours.clone(),
+            });
+        }
+        let sim = Simulation::from_scene(scene)?;
+        Ok(Self {
+            scene: scene.clone(),
+            source,
+            options,
+            sim,
+            notices: Vec::new(),
+        })
+    }
+
+    /// The simulation, to add user systems or register the state they keep
+    /// in checkpoints before the run.
+    pub fn simulation_mut(&mut self) -> &mut Simulation {
+        &mut self.sim
+    }
+
+    /// The simulation.
+    pub fn simulation(&self) -> &Simulation {
+        &self.sim
+    }
+
+    /// The scene's warnings (see [`Simulation::warnings`]).
+    pub fn warnings(&self) -> &[String] {
+        self.sim.warnings()
+    }
+
+    /// What the run has to say besides its warnings: where it resumed, the
+    /// files of an earlier run it removed, gaps in resumed frames, the
+    /// stages' warnings at the end.
+    pub fn notices(&self) -> &[String] {
+        &self.notices
+    }
+
+    /// The output folder.
+    pub fn dir(&self) -> &Path {
+        &self.options.out
+    }
+
+    /// Runs to the scene's end, or until `stop` is raised (after the step
+    /// in progress), writing the results; calls `progress` every 64 steps
+    /// and at the end.
+    pub fn run(
+        &mut self,
+        stop: &AtomicBool,
+        mut progress: impl FnMut(&Progress),
+    ) -> Result<RunSummary, RunError> {
+        let started = Instant::now();
+        let dir = self.options.out.clone();
+        let checkpoint = dir.join(CHECKPOINT_FILE);
+        let mut output = self.open_output(&checkpoint)?;
+        let sim = &mut self.sim;
+        let clock = sim.clock();
+        let checkpoint_steps = self
+            .options
+            .checkpoint_every
+            .map(|t| whole_steps(t, clock.dt));
+        let total = clock.total_steps();
+        let report = |sim: &Simulation, progress: &mut dyn FnMut(&Progress)| {
+            let clock = sim.clock();
+            let (stage, length) = stage_and_length(sim, total);
+            progress(&Progress {
+                step: clock.step,
+                length,
+                time: clock.time,
+                stage,
+                elapsed: started.elapsed(),
+            });
+        };
+        report(sim, &mut progress);
+        let mut failure = None;
+        while !sim.clock().finished() {
+            if let Err(e) = sim.step() {
+                failure = Some(e.to_string());
+                break;
+            }
+            let now = sim.clock();
+            let at = |e: &dyn std::fmt::Display| {
+                format!("step {} (t = {:.6e} s): {e}", now.step, now.time)
+            };
+            if let Err(e) = output.after_step(sim) {
+                failure = Some(format!("cannot write the output at {}", at(&e)));
+                break;
+            }
+            if checkpoint_steps.is_some_and(|n| now.step.is_multiple_of(n) || now.finished())
+                && let Err(e) = sim.write_checkpoint(&checkpoint)
+            {
+                failure = Some(format!("cannot write the checkpoint at {}", at(&e)));
+                break;
+            }
+            if stop.load(Ordering::SeqCst) {
+                break;
+            }
+            if now.step % 64 == 0 || now.finished() {
+                report(sim, &mut progress);
+            }
+        }
+        self.notices.extend(
+            sim.world()
+                .resource::<StageLog>()
+                .warnings
+                .iter()
+                .map(|w| format!("warning: {w}")),
+        );
+        if let Err(e) = output.finish(sim, failure.is_some()) {
+            let written = format!("cannot write the output: {e}");
+            let message = match failure {
+                Some(f) => format!("{f}\n{written}"),
+                None => written,
+            };
+            return Err(RunError::Failed { message, dir });
+        }
+        if let Some(message) = failure {
+            return Err(RunError::Failed { message, dir });
+        }
+        let now = sim.clock();
+        if !now.finished() {
+            let checkpoint = checkpoint_steps
+                .map(|_| sim.write_checkpoint(&checkpoint).map_err(|e| e.to_string()));
+            return Err(RunError::Stopped {
+                step: now.step,
+                time: now.time,
+                dir,
+                checkpoint,
+            });
+        }
+        Ok(RunSummary {
+            name: sim.name().to_owned(),
+            steps: now.step,
+            time: now.time,
+            state_hash: sim.state_hash(),
+            elapsed: started.elapsed(),
+            dir,
+        })
+    }
+
+    /// Restores the checkpoint when resuming (and removes it when
+    /// restarting), then opens the output folder.
+    fn open_output(&mut self, checkpoint: &Path) -> Result<RunOutput, RunError> {
+        let Self {
+            scene,
+            source,
+            options,
+            sim,
+            notices,
+        } = self;
+        let dir = &options.out;
+        match options.start {
+            Start::Resume => {
+                sim.restore_checkpoint(scene, checkpoint)?;
+                let clock = sim.clock();
+                if clock.step > clock.total_steps() {
+                    return Err(RunError::PastTheEnd {
+                        path: checkpoint.to_path_buf(),
+                        step: clock.step,
+                        time: clock.time,
+                        end_step: clock.total_steps(),
+                        end: clock.end,
+                    });
+                }
+                notices.push(format!(
+                    "resuming at step {} (t = {:.6e} s) from {}",
+                    clock.step,
+                    clock.time,
+                    checkpoint.display()
+                ));
+                let (output, gaps) =
+                    RunOutput::resume(dir, scene, sim, checkpoint).map_err(|e| {
+                        RunError::Output(std::io::Error::new(
+                            e.kind(),
+                            format!("{}: cannot carry on the output: {e}", dir.display()),
+                        ))
+                    })?;
+                notices.extend(gaps.map(|g| format!("warning: {g}")));
+                Ok(output)
+            }
+            Start::Fresh | Start::Restart => {
+                if options.start == Start::Restart && checkpoint.exists() {
+                    std::fs::remove_file(checkpoint).map_err(|e| {
+                        RunError::Output(crate::io::manifest::located(checkpoint, e))
+                    })?;
+                }
+                let (output, removed) = RunOutput::create(dir, scene, source.as_deref(), sim)
+                    .map_err(RunError::Output)?;
+                if removed > 0 {
+                    notices.push(format!(
+                        "removed the {removed} files an earlier run wrote into {} (listed in its outputs.txt)",
+                        dir.display()
+                    ));
+                }
+                Ok(output)
+            }
+        }
+    }
+}
+
+/// The stage in progress and the most steps the run can take: the
+/// scene's `total`, or with stages the current one's start and every stage
+/// from it at its longest (each at its `Duration` or `max_time`), within
+/// `total`.
+fn stage_and_length(sim: &Simulation, total: u64) -> (Option<&str>, u64) {
+    let clock = sim.clock();
+    let Some(plan) = sim.world().get_resource::<StagePlan>() else {
+        return (None, total);
+    };
+    let stages = &plan.scene.stages;
+    let Some(current) = stages.get(plan.progress.current) else {
+        return (None, total);
+    };
+    let started = (plan.progress.started / clock.dt).round() as u64;
+    let latest = stages[plan.progress.current..]
+        .iter()
+        .fold(started, |steps, s| {
+            steps.saturating_add(s.end.most_steps(clock.dt))
+        });
+    (Some(current.name.as_str()), latest.clamp(clock.step, total))
+}
