@@ -334,7 +334,7 @@ impl Runner {
             if stop.load(Ordering::SeqCst) {
                 break;
             }
-            if now.step % 64 == 0 || now.finished() {
+            if now.step.is_multiple_of(64) || now.finished() {
                 report(sim, &mut progress);
             }
         }
