@@ -38,7 +38,7 @@ pub fn elastic_block_scene(points: usize) -> Scene {
                 ..Default::default()
             },
         },
-        time: TimeSpec { dt: 1e-5, end: 1.0 },
+        time: TimeSpec::new(1e-5, 1.0),
         gravity: DVec2::new(0.0, -9.81),
         settings: Settings::default(),
         materials: vec![MaterialSpec {

@@ -32,13 +32,14 @@ pub fn undamped_contact_warning(scene: &Scene) -> Option<String> {
     let contacts = !scene.bodies.is_empty()
         && (!scene.blocks.is_empty() || !scene.body_contacts.is_empty())
         && !dashpots;
-    // The damping of the run's start, then as each stage leaves it.
+    // The damping as each stage leaves it (the first from the start), or
+    // the settings' without stages.
     let mut damping = [
         settings.pic_fraction,
         settings.grid_damping,
         settings.particle_damping,
     ];
-    let mut undamped = damping.iter().all(|&d| d == 0.0);
+    let mut undamped = scene.stages.is_empty() && damping.iter().all(|&d| d == 0.0);
     for stage in &scene.stages {
         let changes = [
             stage.pic_fraction,

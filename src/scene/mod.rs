@@ -9,6 +9,7 @@
 
 mod axisymmetry;
 mod contact_stability;
+pub mod input_file;
 mod layout_warnings;
 mod location;
 pub mod point_file;
@@ -121,6 +122,29 @@ pub struct TimeSpec {
     pub dt: Real,
     /// End time (s), > 0.
     pub end: Real,
+    /// The most steps the run may take (default `None`: [`MAX_STEPS`]). A
+    /// scene whose `end / dt` is larger is refused as a likely slip in `dt`
+    /// or `end`; name a larger count here to run that long.
+    pub max_steps: Option<u64>,
+}
+
+/// The default cap on a run's steps, `time.max_steps`: 10⁸, days of
+/// running for a small scene.
+pub const MAX_STEPS: u64 = 100_000_000;
+
+/// The cap on the samples a run records (`end` over
+/// `output.probe_interval`): each is kept in memory until the run ends.
+pub const MAX_SAMPLES: u64 = 10_000_000;
+
+impl TimeSpec {
+    /// A time step and an end time, with the default cap on the steps.
+    pub fn new(dt: Real, end: Real) -> Self {
+        Self {
+            dt,
+            end,
+            max_steps: None,
+        }
+    }
 }
 
 /// The error for a time entry with both an end and a number of steps.
@@ -139,6 +163,8 @@ struct TimeInput {
     end: Option<Real>,
     #[serde(default, deserialize_with = "rules::de_some_step_count")]
     steps: Option<u64>,
+    #[serde(default, deserialize_with = "rules::de_some_step_count")]
+    max_steps: Option<u64>,
 }
 
 impl TryFrom<TimeInput> for TimeSpec {
@@ -151,7 +177,11 @@ impl TryFrom<TimeInput> for TimeSpec {
             (Some(_), Some(_)) => return Err(TIME_END_TWICE.into()),
             (None, None) => return Err(TIME_END_MISSING.into()),
         };
-        Ok(Self { dt: input.dt, end })
+        Ok(Self {
+            dt: input.dt,
+            end,
+            max_steps: input.max_steps,
+        })
     }
 }
 
@@ -446,7 +476,7 @@ pub enum SceneError {
 impl Scene {
     /// Reads, parses and validates a scene file.
     pub fn load(path: &Path) -> Result<Self, SceneError> {
-        let source = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+        let source = input_file::read_input(path).map_err(|source| SceneError::Read {
             path: path.to_path_buf(),
             source,
         })?;

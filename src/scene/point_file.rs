@@ -92,7 +92,7 @@ impl Scene {
 /// Reads a point list. The error names the file, the line and what was
 /// expected there.
 pub fn read_point_file(path: &Path) -> Result<Vec<ListedPoint>, String> {
-    let text = std::fs::read_to_string(path)
+    let text = super::input_file::read_input(path)
         .map_err(|e| format!("{}: cannot read the point list: {e}", path.display()))?;
     parse_point_list(&text).map_err(|e| format!("{}:{e}", path.display()))
 }

@@ -2,8 +2,8 @@
 
 use super::axisymmetry::axisymmetry_error;
 use super::{
-    InitialStress, InitialVelocity, MotionSpec, Scene, SceneError, Shape, SourceLocation,
-    VelocityField, rules,
+    InitialStress, InitialVelocity, MAX_SAMPLES, MAX_STEPS, MotionSpec, Scene, SceneError, Shape,
+    SourceLocation, VelocityField, rules,
 };
 use crate::components::RigidVelocity;
 use crate::contact::ForceApplication;
@@ -94,6 +94,28 @@ impl Scene {
                 format!(
                     "time.dt ({}) is longer than time.end ({})",
                     self.time.dt, self.time.end
+                ),
+            ));
+        }
+        let cap = self.time.max_steps.unwrap_or(MAX_STEPS);
+        let steps = self.time.end / self.time.dt;
+        if steps > cap as Real {
+            return Err(invalid(
+                &["time", "dt"],
+                format!(
+                    "time: end / dt = {:e} / {:e} gives {steps:.3e} steps, more than the cap of {cap} (time.max_steps; default {MAX_STEPS}): check dt and end, or name a larger time.max_steps",
+                    self.time.end, self.time.dt
+                ),
+            ));
+        }
+        let sampled = self.time.end / self.output.probe_interval_or_default(self.time.end);
+        if sampled > MAX_SAMPLES as Real {
+            return Err(invalid(
+                &["output", "probe_interval"],
+                format!(
+                    "output.probe_interval: {:e} s over time.end = {} s gives {sampled:.3e} samples, more than the {MAX_SAMPLES} a run keeps in memory: sample less often",
+                    self.output.probe_interval_or_default(self.time.end),
+                    self.time.end
                 ),
             ));
         }
