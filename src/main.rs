@@ -301,7 +301,7 @@ fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
         "{bar:40} {msg} elapsed {elapsed} ETA {eta}",
     );
     let log_lines = !request.quiet && !std::io::stderr().is_terminal();
-    let mut last_line = Instant::now();
+    let mut last_line: Option<Instant> = None;
     let result = runner.run(&stop, |p| {
         let stage = p.stage.map_or(String::new(), |s| format!(", stage '{s}'"));
         let of = match p.stage {
@@ -312,8 +312,9 @@ fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
         bar.set_length(p.length);
         bar.set_position(p.step);
         bar.set_message(message.clone());
-        if log_lines && (last_line.elapsed() >= LOG_PROGRESS_EVERY || p.step >= p.length) {
-            last_line = Instant::now();
+        let due = last_line.is_none_or(|t| t.elapsed() >= LOG_PROGRESS_EVERY);
+        if log_lines && (due || p.step >= p.length) {
+            last_line = Some(Instant::now());
             say_err(&format!(
                 "{message}, elapsed {}, ETA {}",
                 clock_time(p.elapsed),

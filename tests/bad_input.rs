@@ -55,7 +55,12 @@ fn every_malformed_scene_is_refused_with_where_and_what_and_nothing_written() {
     let out = std::env::temp_dir().join(format!("mpdem-bad-input-{}", std::process::id()));
     let mut failures = Vec::new();
     for case in &cases {
-        let name = case.path.file_name().unwrap().to_string_lossy().into_owned();
+        let name = case
+            .path
+            .file_name()
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
         let folder = out.join(&name);
         for args in [
             vec!["check", case.path.to_str().unwrap()],
