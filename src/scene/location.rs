@@ -25,15 +25,26 @@ impl SourceLocation {
     /// The position of the last of `anchors`, each searched for after the
     /// previous one (e.g. `["bodies", "\"column\"", "material"]`); when one
     /// is not found (a field left out), the last found before it, or the
-    /// file alone when the first is not found. Comments are skipped; a quoted
-    /// anchor matches a string literal, any other anchor a field name (an
-    /// identifier followed by `:`). Columns count characters, as ron's do.
+    /// file alone when the first is not found. Comments are skipped; the
+    /// first anchor is a section of the scene (a field of its outermost
+    /// parentheses, not a field of the same name inside one); a quoted
+    /// anchor after a section matches an entry's `name: "..."`, any other
+    /// quoted anchor a string literal, and any other anchor a field name
+    /// (an identifier followed by `:`). Columns count characters, as ron's
+    /// do.
     pub fn find(source: &str, path: &Path, anchors: &[&str]) -> Self {
         let text = without_comments(source);
         let (mut from, mut scope) = (0, text.len());
         let mut found = None;
         for (k, anchor) in anchors.iter().enumerate() {
-            match find_anchor(&text[..scope], from, anchor) {
+            let kind = match k {
+                0 => Anchor::Section,
+                _ if anchor.starts_with('"') && !anchors[k - 1].starts_with('"') => {
+                    Anchor::EntryName
+                }
+                _ => Anchor::Any,
+            };
+            match find_anchor(&text[..scope], from, anchor, kind) {
                 Some(at) => {
                     found = Some(at);
                     from = at + anchor.len();
@@ -65,25 +76,67 @@ impl SourceLocation {
     }
 }
 
+/// Which matches of an anchor count.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Anchor {
+    /// A field of the scene's outermost parentheses.
+    Section,
+    /// The string value of a `name` field.
+    EntryName,
+    /// Any match.
+    Any,
+}
+
 /// Byte offset of the first match of `anchor` at or after `from`: a string
-/// literal matches anywhere, a field name only as a whole identifier followed
-/// by optional white space and `:`.
-fn find_anchor(text: &str, from: usize, anchor: &str) -> Option<usize> {
+/// literal (for `Anchor::EntryName` only the value of a `name` field), or a
+/// field name as a whole identifier followed by optional white space and
+/// `:` (for `Anchor::Section` only inside the outermost brackets, not
+/// deeper).
+fn find_anchor(text: &str, from: usize, anchor: &str, kind: Anchor) -> Option<usize> {
     let is_ident = |c: char| c.is_alphanumeric() || c == '_';
     let mut start = from;
     while let Some(k) = text[start..].find(anchor) {
         let at = start + k;
         let end = at + anchor.len();
         let quoted = anchor.starts_with('"');
-        let whole = quoted
-            || (!text[..at].chars().next_back().is_some_and(is_ident)
-                && text[end..].trim_start().starts_with(':'));
+        let whole = if quoted {
+            kind != Anchor::EntryName || {
+                let before = text[..at].trim_end();
+                before.strip_suffix(':').is_some_and(|b| {
+                    b.trim_end().ends_with("name")
+                        && !b.trim_end()[..b.trim_end().len() - 4]
+                            .chars()
+                            .next_back()
+                            .is_some_and(is_ident)
+                })
+            }
+        } else {
+            !text[..at].chars().next_back().is_some_and(is_ident)
+                && text[end..].trim_start().starts_with(':')
+                && (kind != Anchor::Section || depth(&text[..at]) == 1)
+        };
         if whole {
             return Some(at);
         }
         start = end;
     }
     None
+}
+
+/// The bracket depth at the end of `text` (strings skipped).
+fn depth(text: &str) -> usize {
+    let (mut depth, mut in_string, mut escaped) = (0usize, false, false);
+    for b in text.bytes() {
+        match (in_string, escaped, b) {
+            (true, true, _) => escaped = false,
+            (true, false, b'\\') => escaped = true,
+            (_, false, b'"') => in_string = !in_string,
+            (false, _, b'(' | b'[' | b'{') => depth += 1,
+            (false, _, b')' | b']' | b'}') => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    depth
 }
 
 /// Where the value that begins at `from` ends (byte offset): at the first

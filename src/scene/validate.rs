@@ -481,13 +481,13 @@ impl Scene {
             let at = quoted(&curve.name);
             let fail = |field: &str, message: String| {
                 invalid(
-                    &["curves", &at, field],
+                    &["output", "curves", &at, field],
                     format!("curve '{}': {message}", curve.name),
                 )
             };
             let fail_name = |message: String| {
                 invalid(
-                    &["curves", &at],
+                    &["output", "curves", &at],
                     format!("curve '{}': {message}", curve.name),
                 )
             };
@@ -496,7 +496,7 @@ impl Scene {
             let file = curve.name.to_lowercase();
             if !curve_names.insert(file.clone()) {
                 return Err(invalid(
-                    &nth_name("curves", k),
+                    &[&["output"], nth_name("curves", k).as_slice()].concat(),
                     format!(
                         "curve '{}': the name is used twice (names are files: letter case does not tell them apart)",
                         curve.name
@@ -563,9 +563,12 @@ impl Scene {
             ));
         }
         let mut pairs = BTreeSet::new();
-        for spec in &self.body_contacts {
+        for (k, spec) in self.body_contacts.iter().enumerate() {
             let (a, b) = (&spec.between.0, &spec.between.1);
-            let at = ["body_contacts", "between"];
+            // The k-th entry's `between` (and below its `law`).
+            let at: Vec<&str> = std::iter::once("body_contacts")
+                .chain(std::iter::repeat_n("between", k + 1))
+                .collect();
             let members = |name: &str| {
                 self.contact_members(name).ok_or_else(|| {
                     invalid(
@@ -606,7 +609,9 @@ impl Scene {
             }
             spec.law.check().map_err(|e| {
                 invalid(
-                    &["body_contacts", "law"],
+                    &std::iter::once("body_contacts")
+                        .chain(std::iter::repeat_n("law", k + 1))
+                        .collect::<Vec<_>>(),
                     format!("body_contacts ('{a}', '{b}'): {e}"),
                 )
             })?;
