@@ -26,13 +26,15 @@ pub mod contact;
 pub mod io;
 pub mod materials;
 pub mod math;
+pub mod node_rect;
+pub mod parallel;
 pub mod resources;
 pub mod rigid;
 pub mod runner;
+pub mod scatter;
 pub mod scene;
 pub mod shape_functions;
 mod simulation;
-pub mod transfer;
 pub mod verify;
 
 #[path = "../systems/mod.rs"]

@@ -3,10 +3,10 @@
 use crate::components::{BodyIndex, MaterialPoints};
 use crate::contact::{ContactLaw, pair_force};
 use crate::math::{DVec2, Real};
+use crate::parallel::MIN_POINTS_PER_TASK;
 use crate::resources::{
     BodyContacts, BodyPairContact, BodyPairLaw, Clock, Grid, MAX_CONTACT_BODIES, law_between,
 };
-use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 

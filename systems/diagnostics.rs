@@ -5,12 +5,12 @@ use crate::components::{
     PartReactions, PointEnergies, Pose, Reaction, RigidVelocity, sort_into_scene_order,
 };
 use crate::math::DVec2;
+use crate::parallel::MIN_POINTS_PER_TASK;
 use crate::resources::{
     BlockLog, BodyContacts, BodyPairLog, BodyPairSample, Clock, ContactWork, Diagnostics,
     EnergyLog, EnergySample, Gravity, LoadWork, MAX_CONTACT_BODIES, NumericalFailure, PairTally,
     Probes, Settings,
 };
-use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 

@@ -5,9 +5,10 @@ use crate::components::{
     DampedEnergy, GridLayer, MaterialPoints, RemapScratch, StepTravel, TransferScratch,
 };
 use crate::math::{DMat2, DVec2, Real, local_damping, outer};
+use crate::parallel::MIN_POINTS_PER_TASK;
 use crate::resources::{Clock, Grid, PositionUpdate, Settings, SharedLayers};
+use crate::scatter::{Scatter, ScatterOrder};
 use crate::shape_functions::Stencil;
-use crate::transfer::{MIN_POINTS_PER_TASK, Scatter, ScatterOrder};
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 

@@ -5,9 +5,9 @@ use crate::components::{
 };
 use crate::materials::{ConstitutiveModel, MaterialModel, PointStep};
 use crate::math::{DMat2, DVec2, Real, outer, rate_of_deformation, spin};
+use crate::parallel::MIN_POINTS_PER_TASK;
 use crate::resources::{Clock, Geometry, Settings, UpdateScheme};
 use crate::shape_functions::Stencil;
-use crate::transfer::MIN_POINTS_PER_TASK;
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 

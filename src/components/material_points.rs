@@ -3,7 +3,7 @@
 use crate::materials::ConstitutiveModel;
 use crate::math::{DMat2, DVec2, Real, SymTensor};
 use crate::resources::Geometry;
-use crate::transfer::CHUNK_POINTS;
+use crate::scatter::CHUNK_POINTS;
 use bevy_ecs::prelude::Component;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};

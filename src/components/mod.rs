@@ -8,11 +8,12 @@ mod material_points;
 mod rigid;
 mod transfer_scratch;
 
+pub use crate::node_rect::NodeRect;
 pub use body::{
     BodyAcceleration, BodyIndex, BodyName, Material, RegionConstraint, RegionConstraints,
     bodies_in_scene_order, sort_into_scene_order,
 };
-pub use grid_layer::{Fix, GridLayer, GridNode, NodeConstraint, NodeRect, WINDOW_MARGIN_NODES};
+pub use grid_layer::{Fix, GridLayer, GridNode, NodeConstraint, WINDOW_MARGIN_NODES};
 pub use material_points::{
     DampedEnergy, MaterialPoints, NewPoint, PointEnergies, StepTravel, hoop_radius,
 };

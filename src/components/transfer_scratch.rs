@@ -2,8 +2,8 @@
 //! step allocates nothing once the first step has sized it.
 
 use crate::math::{DVec2, Real};
+use crate::scatter::{Scatter, ScatterOrder};
 use crate::shape_functions::Stencil;
-use crate::transfer::{Scatter, ScatterOrder};
 use bevy_ecs::prelude::Component;
 use std::ops::AddAssign;
 

@@ -16,7 +16,7 @@ pub use linear::LinearHat;
 pub use ugimp::UGimp;
 
 use crate::math::{DVec2, Real};
-use crate::transfer::MIN_POINTS_PER_TASK;
+use crate::parallel::MIN_POINTS_PER_TASK;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 

@@ -11,21 +11,11 @@
 //! of the body, not the whole body. Patch buffers are kept between steps:
 //! after the first steps a scatter allocates nothing.
 
-use crate::components::NodeRect;
 use crate::math::{DVec2, Real};
+use crate::node_rect::NodeRect;
 use crate::shape_functions::{STENCIL_WIDTH, Stencil};
 use rayon::prelude::*;
 use std::ops::AddAssign;
-
-/// Fewest points one parallel task handles in the per-point loops: below
-/// this, splitting costs more (thread wake-ups) than it gains, and small
-/// bodies run on one thread.
-pub const MIN_POINTS_PER_TASK: usize = 1024;
-
-/// Fewest nodes one parallel task handles in the per-node loops: a node
-/// update is a few flops, so smaller tasks cost more to hand out than they
-/// save (measured on the standard bench: no gain below 4096).
-pub const MIN_NODES_PER_TASK: usize = 4096;
 
 /// Points per scatter chunk. Fixed (not derived from the thread count) so that
 /// results do not depend on it; large enough to amortise the patch overhead,
