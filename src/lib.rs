@@ -30,6 +30,7 @@ pub mod node_rect;
 pub mod parallel;
 pub mod resources;
 pub mod rigid;
+pub mod rules;
 pub mod runner;
 pub mod scatter;
 pub mod scene;

@@ -76,7 +76,7 @@ pub struct BodyAcceleration {
     /// Full acceleration (m/s²).
     pub value: DVec2,
     /// Time to reach it from zero (s), ≥ 0. Default 0: applied at once.
-    #[serde(default, deserialize_with = "crate::scene::rules::de_non_negative")]
+    #[serde(default, deserialize_with = "crate::rules::de_non_negative")]
     pub ramp_time: Real,
 }
 

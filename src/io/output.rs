@@ -10,7 +10,7 @@ use super::vtk::{
 use crate::components::{BlockId, BlockOutline, BodyIndex, MaterialPoints, Pose};
 use crate::math::{DVec2, Real};
 use crate::resources::{BlockLog, BodyPairLog, EnergyLog, Grid, Probes, StageLog};
-use crate::scene::rules::file_safe;
+use crate::rules::file_safe;
 use crate::scene::{CurveSpec, Scene};
 use crate::simulation::Simulation;
 use std::fs::File;

@@ -4,7 +4,7 @@
 
 use super::{ConstitutiveModel, PointStep, jaumann_rotation};
 use crate::math::{DMat2, Real, SymTensor};
-use crate::scene::rules::{poisson_ratio, positive};
+use crate::rules::{poisson_ratio, positive};
 use serde::{Deserialize, Serialize};
 
 /// Hooke's law in rate form. Fields are the scene's names.
@@ -12,10 +12,10 @@ use serde::{Deserialize, Serialize};
 #[serde(deny_unknown_fields)]
 pub struct LinearElastic {
     /// Young's modulus E (Pa), > 0.
-    #[serde(deserialize_with = "crate::scene::rules::de_positive")]
+    #[serde(deserialize_with = "crate::rules::de_positive")]
     pub youngs_modulus: Real,
     /// Poisson's ratio ν, in (−1, 0.5).
-    #[serde(deserialize_with = "crate::scene::rules::de_poisson_ratio")]
+    #[serde(deserialize_with = "crate::rules::de_poisson_ratio")]
     pub poisson_ratio: Real,
 }
 

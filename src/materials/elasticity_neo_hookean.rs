@@ -16,7 +16,7 @@
 
 use super::{ConstitutiveModel, LinearElastic, PointStep};
 use crate::math::{DMat2, Real, SymTensor};
-use crate::scene::rules::{poisson_ratio, positive};
+use crate::rules::{poisson_ratio, positive};
 use serde::{Deserialize, Serialize};
 
 /// Parameters of the model (scene `NeoHookean((...))`). The Lamé constants
@@ -25,10 +25,10 @@ use serde::{Deserialize, Serialize};
 #[serde(deny_unknown_fields)]
 pub struct NeoHookean {
     /// Young's modulus E (Pa) at small strain, > 0.
-    #[serde(deserialize_with = "crate::scene::rules::de_positive")]
+    #[serde(deserialize_with = "crate::rules::de_positive")]
     pub youngs_modulus: Real,
     /// Poisson's ratio ν at small strain, in (−1, 0.5).
-    #[serde(deserialize_with = "crate::scene::rules::de_poisson_ratio")]
+    #[serde(deserialize_with = "crate::rules::de_poisson_ratio")]
     pub poisson_ratio: Real,
 }
 

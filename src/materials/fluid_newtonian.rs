@@ -15,7 +15,7 @@
 
 use super::{ConstitutiveModel, PointStep};
 use crate::math::{DMat2, Real, SymTensor};
-use crate::scene::rules::{non_negative, positive};
+use crate::rules::{non_negative, positive};
 use serde::{Deserialize, Serialize};
 
 /// Parameters of the model (scene `NewtonianFluid((...))`).
@@ -25,17 +25,17 @@ pub struct NewtonianFluid {
     /// Bulk modulus K of the equation of state (Pa), > 0. Weakly compressible
     /// models choose it well below water's 2.2 GPa (the paper's dam break
     /// uses 3e4 Pa) so that the time step stays practical.
-    #[serde(deserialize_with = "crate::scene::rules::de_positive")]
+    #[serde(deserialize_with = "crate::rules::de_positive")]
     pub bulk_modulus: Real,
     /// Exponent γ of the equation of state, > 0. Default 7, Monaghan's value
     /// for water (the paper's choice).
     #[serde(
         default = "default_gamma",
-        deserialize_with = "crate::scene::rules::de_positive"
+        deserialize_with = "crate::rules::de_positive"
     )]
     pub gamma: Real,
     /// Dynamic viscosity μ_w (Pa·s), ≥ 0 (0: inviscid). Water: 8.9e-4.
-    #[serde(deserialize_with = "crate::scene::rules::de_non_negative")]
+    #[serde(deserialize_with = "crate::rules::de_non_negative")]
     pub viscosity: Real,
 }
 

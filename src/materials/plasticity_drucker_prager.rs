@@ -12,7 +12,7 @@
 
 use super::{ElasticPlastic, LinearElastic};
 use crate::math::{Real, SymTensor};
-use crate::scene::rules::{non_negative, poisson_ratio, positive};
+use crate::rules::{non_negative, poisson_ratio, positive};
 use serde::{Deserialize, Serialize};
 
 /// Parameters of the model (scene `DruckerPrager((...))`).

@@ -51,7 +51,7 @@
 
 use super::{ElasticPlastic, LinearElastic};
 use crate::math::{Real, SymTensor};
-use crate::scene::rules::{non_negative, poisson_ratio, positive};
+use crate::rules::{non_negative, poisson_ratio, positive};
 use serde::{Deserialize, Deserializer, Serialize, de::Error};
 use std::f64::consts::{FRAC_PI_3, PI};
 
@@ -60,10 +60,10 @@ use std::f64::consts::{FRAC_PI_3, PI};
 #[serde(deny_unknown_fields)]
 pub struct MohrCoulomb {
     /// Young's modulus E (Pa), > 0.
-    #[serde(deserialize_with = "crate::scene::rules::de_positive")]
+    #[serde(deserialize_with = "crate::rules::de_positive")]
     pub youngs_modulus: Real,
     /// Poisson's ratio ν in (−1, 0.5).
-    #[serde(deserialize_with = "crate::scene::rules::de_poisson_ratio")]
+    #[serde(deserialize_with = "crate::rules::de_poisson_ratio")]
     pub poisson_ratio: Real,
     /// Friction angle φ (degrees), in [0, 90); not 0 together with a
     /// cohesion of 0 (no strength: `DruckerPrager` models such a solid).
@@ -74,19 +74,19 @@ pub struct MohrCoulomb {
     #[serde(default, deserialize_with = "de_angle")]
     pub dilation_angle: Real,
     /// Cohesion c (Pa), ≥ 0. Default 0: a cohesionless soil.
-    #[serde(default, deserialize_with = "crate::scene::rules::de_non_negative")]
+    #[serde(default, deserialize_with = "crate::rules::de_non_negative")]
     pub cohesion: Real,
     /// Rankine tension cut-off σ_t (Pa), ≥ 0: the largest principal stress
     /// allowed; capped at the apex c cot φ. Default 0: a cohesionless soil
     /// carries no tension.
-    #[serde(default, deserialize_with = "crate::scene::rules::de_non_negative")]
+    #[serde(default, deserialize_with = "crate::rules::de_non_negative")]
     pub tension_cutoff: Real,
     /// Meridional eccentricity ε of the flow potential (eq. 14a), ≥ 0: how
     /// far the hyperbola rounds the potential's apex. Default 0.1, Abaqus's
     /// default; with c = 0 or ψ = 0 the term vanishes.
     #[serde(
         default = "default_meridional_eccentricity",
-        deserialize_with = "crate::scene::rules::de_non_negative"
+        deserialize_with = "crate::rules::de_non_negative"
     )]
     pub meridional_eccentricity: Real,
     /// Deviatoric eccentricity e of the flow potential (eq. 14b), in

@@ -1,7 +1,7 @@
 //! Numerical settings and gravity.
 
 use crate::math::{DVec2, Real};
-use crate::scene::rules::{damping, fraction, xpic_order};
+use crate::rules::{damping, fraction, xpic_order};
 use crate::shape_functions::ShapeFunction;
 use bevy_ecs::prelude::Resource;
 use serde::{Deserialize, Serialize};
@@ -110,22 +110,22 @@ pub struct Settings {
     /// PIC fraction β of eq. 11 in [0, 1]: 0 is pure FLIP, 1 pure PIC.
     /// Default 0: FLIP conserves energy, which dynamic benchmarks need.
     /// Not used when `xpic_order` is set.
-    #[serde(deserialize_with = "crate::scene::rules::de_fraction")]
+    #[serde(deserialize_with = "crate::rules::de_fraction")]
     pub pic_fraction: Real,
     /// XPIC order m of eq. 12 (1 to 10; m = 1 is PIC). Default `None`: the
     /// FLIP/PIC blend of eq. 11, the paper's usual update.
-    #[serde(deserialize_with = "crate::scene::rules::de_xpic_order")]
+    #[serde(deserialize_with = "crate::rules::de_xpic_order")]
     pub xpic_order: Option<u32>,
     /// Grid damping α_g in [0, 1], local non-viscous damping at the nodes
     /// (Cundall 1987): each nodal force component is reduced by α_g |f| in
     /// the direction of the node's motion. Default 0: dynamics are not
     /// altered unasked.
-    #[serde(deserialize_with = "crate::scene::rules::de_damping")]
+    #[serde(deserialize_with = "crate::rules::de_damping")]
     pub grid_damping: Real,
     /// Particle damping α_p in [0, 1], the same law at the points: each
     /// component of a point's acceleration S a is reduced by α_p |S a| in
     /// the direction of the point's motion before it updates V_p. Default 0.
-    #[serde(deserialize_with = "crate::scene::rules::de_damping")]
+    #[serde(deserialize_with = "crate::rules::de_damping")]
     pub particle_damping: Real,
     /// How the points move in G2P. Default (`None`): `RemappedVelocity`
     /// under the FLIP/PIC update, eq. 12b under XPIC, which takes no other.

@@ -13,7 +13,6 @@ pub mod input_file;
 mod layout_warnings;
 mod location;
 pub mod point_file;
-pub mod rules;
 mod shapes;
 mod spawn;
 mod spawn_blocks;
@@ -37,6 +36,7 @@ use crate::math::{DVec2, Real};
 use crate::resources::ContactSettings;
 use crate::resources::{EdgeConditions, Settings};
 use crate::rigid::BlockShape;
+use crate::rules;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 

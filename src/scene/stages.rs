@@ -2,10 +2,10 @@
 //! surcharge, driving a pile...) that each change the setup on entry and
 //! end after a duration or when the model has settled.
 
-use super::rules;
 use crate::components::RigidVelocity;
 use crate::math::{DVec2, Real};
 use crate::resources::{EdgeCondition, EdgeConditions};
+use crate::rules;
 use serde::{Deserialize, Deserializer, Serialize};
 
 /// One stage. Every change is optional: what a stage does not set stays as

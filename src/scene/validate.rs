@@ -3,7 +3,7 @@
 use super::axisymmetry::axisymmetry_error;
 use super::{
     InitialStress, InitialVelocity, MAX_SAMPLES, MAX_STEPS, MotionSpec, Scene, SceneError, Shape,
-    SourceLocation, VelocityField, rules,
+    SourceLocation, VelocityField,
 };
 use crate::components::RigidVelocity;
 use crate::contact::ForceApplication;
@@ -11,6 +11,7 @@ use crate::io::output::{PROBE_PLOT_PREFIX, RUN_FILE_STEMS};
 use crate::materials::MaterialModel;
 use crate::math::Real;
 use crate::resources::MAX_CONTACT_BODIES;
+use crate::rules;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
