@@ -1,7 +1,7 @@
 //! Algorithm 1, line 9 for bodies against bodies (paper section 3.3).
 
 use crate::components::{BodyIndex, MaterialPoints};
-use crate::contact::{ContactLaw, pair_force};
+use crate::contact::{ContactLaw, DiskOverlap, disk_overlap, pair_force};
 use crate::math::{DVec2, Real};
 use crate::parallel::MIN_POINTS_PER_TASK;
 use crate::resources::{
@@ -224,14 +224,12 @@ fn disk_pair(
         second.position[q as usize],
         second.contact_radius[q as usize],
     );
-    let gap = xp - xq;
-    let distance = gap.length();
-    let overlap = rp + rq - distance;
-    if overlap <= 0.0 || distance == 0.0 {
-        return None;
-    }
-    let normal = gap / distance;
-    let at = xq + normal * (rq - 0.5 * overlap);
+    let DiskOverlap {
+        normal,
+        overlap,
+        at,
+        separation: gap,
+    } = disk_overlap(xp, rp, xq, rq)?;
     let key = (a, p, b, q);
     let before = previous
         .binary_search_by(|c| c.key().cmp(&key))
