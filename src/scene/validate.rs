@@ -2,8 +2,8 @@
 
 use super::axisymmetry::axisymmetry_error;
 use super::{
-    InitialStress, InitialVelocity, MAX_SAMPLES, MAX_STEPS, MotionSpec, Scene, SceneError, Shape,
-    SourceLocation, VelocityField,
+    BodySpec, InitialStress, InitialVelocity, ListedPoint, MAX_SAMPLES, MAX_STEPS, MotionSpec,
+    Scene, SceneError, Shape, SourceLocation, VelocityField,
 };
 use crate::components::RigidVelocity;
 use crate::contact::ForceApplication;
@@ -30,45 +30,84 @@ const MAX_POINTS: u128 = 20_000_000;
 /// are stored as u32, which this also keeps in range.
 const MAX_NODES: u128 = 50_000_000;
 
-impl Scene {
-    /// Validates; `source` (text and path) lets errors point into the file.
-    pub(super) fn validate_in(&self, source: Option<(&str, &Path)>) -> Result<(), SceneError> {
-        let invalid = |anchors: &[&str], message: String| SceneError::Invalid {
-            location: match source {
+/// Where a validation error is: the scene's text and file, if it came from
+/// one.
+struct Locator<'t> {
+    source: Option<(&'t str, &'t Path)>,
+}
+
+impl Locator<'_> {
+    /// The error `message` at the last of `anchors` found in the text (see
+    /// [`SourceLocation::find`]).
+    fn invalid(&self, anchors: &[&str], message: String) -> SceneError {
+        SceneError::Invalid {
+            location: match self.source {
                 Some((text, path)) => SourceLocation::find(text, path, anchors),
                 None => SourceLocation::default(),
             },
             message,
-        };
-        let quoted = |name: &str| format!("\"{name}\"");
-        // The `name` field of entry k of a section (each entry has one), for
-        // a name used twice: the place of its second use.
-        let nth_name = |section: &'static str, k: usize| -> Vec<&'static str> {
-            std::iter::once(section)
-                .chain(std::iter::repeat_n("name", k + 1))
-                .collect()
-        };
+        }
+    }
+}
 
+/// A name as the quoted string that anchors its entry.
+fn quoted(name: &str) -> String {
+    format!("\"{name}\"")
+}
+
+/// The `name` field of entry k of a section (each entry has one), for a
+/// name used twice: the place of its second use.
+fn nth_name(section: &'static str, k: usize) -> Vec<&'static str> {
+    std::iter::once(section)
+        .chain(std::iter::repeat_n("name", k + 1))
+        .collect()
+}
+
+impl Scene {
+    /// Validates; `source` (text and path) lets errors point into the file.
+    pub(super) fn validate_in(&self, source: Option<(&str, &Path)>) -> Result<(), SceneError> {
+        let v = Locator { source };
+        self.check_name(&v)?;
+        self.check_grid(&v)?;
+        self.check_time(&v)?;
+        self.check_settings(&v)?;
+        let materials = self.check_materials(&v)?;
+        let bodies = self.check_bodies(&v, &materials)?;
+        let blocks = self.check_blocks(&v)?;
+        self.check_contact(&v)?;
+        self.check_probes_and_output(&v, &bodies, &blocks)?;
+        self.check_body_contacts(&v, &bodies)?;
+        self.check_stages(&v, &bodies, &blocks)?;
+        Ok(())
+    }
+
+    /// The scene's name, which names the output folder.
+    fn check_name(&self, v: &Locator) -> Result<(), SceneError> {
         if let Some(name) = &self.name {
             rules::file_name(name).map_err(|e| {
-                invalid(
+                v.invalid(
                     &["name"],
                     format!("name: {e} (the output folder is out/<name>)"),
                 )
             })?;
         }
+        Ok(())
+    }
+
+    /// The grid: its origin, cell size and counts.
+    fn check_grid(&self, v: &Locator) -> Result<(), SceneError> {
         let grid = &self.grid;
         rules::positive(grid.cell_size)
-            .map_err(|e| invalid(&["grid", "cell_size"], format!("grid.cell_size: {e}")))?;
+            .map_err(|e| v.invalid(&["grid", "cell_size"], format!("grid.cell_size: {e}")))?;
         if !grid.origin.is_finite() {
-            return Err(invalid(
+            return Err(v.invalid(
                 &["grid", "origin"],
                 format!("grid.origin must be finite, got {}", grid.origin),
             ));
         }
         let nodes = (grid.cells.0 as u128 + 1) * (grid.cells.1 as u128 + 1);
         if nodes > MAX_NODES {
-            return Err(invalid(
+            return Err(v.invalid(
                 &["grid", "cells"],
                 format!(
                     "grid.cells {:?} give {nodes} nodes, more than the {MAX_NODES} a layer may hold",
@@ -77,7 +116,7 @@ impl Scene {
             ));
         }
         if grid.cells.0 < 2 || grid.cells.1 < 2 {
-            return Err(invalid(
+            return Err(v.invalid(
                 &["grid", "cells"],
                 format!(
                     "grid.cells must be at least 2 in each direction, got {:?}",
@@ -85,12 +124,17 @@ impl Scene {
                 ),
             ));
         }
+        Ok(())
+    }
+
+    /// The time step and end, and the steps and samples they make.
+    fn check_time(&self, v: &Locator) -> Result<(), SceneError> {
         rules::positive(self.time.dt)
-            .map_err(|e| invalid(&["time", "dt"], format!("time.dt: {e}")))?;
+            .map_err(|e| v.invalid(&["time", "dt"], format!("time.dt: {e}")))?;
         rules::positive(self.time.end)
-            .map_err(|e| invalid(&["time", "end"], format!("time.end: {e}")))?;
+            .map_err(|e| v.invalid(&["time", "end"], format!("time.end: {e}")))?;
         if self.time.dt > self.time.end {
-            return Err(invalid(
+            return Err(v.invalid(
                 &["time", "dt"],
                 format!(
                     "time.dt ({}) is longer than time.end ({})",
@@ -101,7 +145,7 @@ impl Scene {
         let cap = self.time.max_steps.unwrap_or(MAX_STEPS);
         let steps = self.time.end / self.time.dt;
         if steps > cap as Real {
-            return Err(invalid(
+            return Err(v.invalid(
                 &["time", "dt"],
                 format!(
                     "time: end / dt = {:e} / {:e} gives {steps:.3e} steps, more than the cap of {cap} (time.max_steps; default {MAX_STEPS}): check dt and end, or name a larger time.max_steps",
@@ -111,7 +155,7 @@ impl Scene {
         }
         let sampled = self.time.end / self.output.probe_interval_or_default(self.time.end);
         if sampled > MAX_SAMPLES as Real {
-            return Err(invalid(
+            return Err(v.invalid(
                 &["output", "probe_interval"],
                 format!(
                     "output.probe_interval: {:e} s over time.end = {} s gives {sampled:.3e} samples, more than the {MAX_SAMPLES} a run keeps in memory: sample less often",
@@ -120,58 +164,74 @@ impl Scene {
                 ),
             ));
         }
+        Ok(())
+    }
+
+    /// Gravity and the numerical settings.
+    fn check_settings(&self, v: &Locator) -> Result<(), SceneError> {
         if !self.gravity.is_finite() {
-            return Err(invalid(
+            return Err(v.invalid(
                 &["gravity"],
                 format!("gravity must be finite, got {}", self.gravity),
             ));
         }
         self.settings
             .check()
-            .map_err(|e| invalid(&["settings"], format!("settings: {e}")))?;
+            .map_err(|e| v.invalid(&["settings"], format!("settings: {e}")))?;
         if let Some((anchors, message)) = axisymmetry_error(self) {
             let anchors: Vec<&str> = anchors.iter().map(String::as_str).collect();
-            return Err(invalid(&anchors, message));
+            return Err(v.invalid(&anchors, message));
         }
         if self.settings.xpic_order.is_some() && !self.shared_layers().is_empty() {
-            return Err(invalid(
+            return Err(v.invalid(
                 &["settings", "xpic_order"],
                 "settings.xpic_order: XPIC is not available with contact groups yet (its projections run per body); use pic_fraction".into(),
             ));
         }
+        Ok(())
+    }
+
+    /// The materials; returns their names.
+    fn check_materials<'s>(&'s self, v: &Locator) -> Result<BTreeSet<&'s str>, SceneError> {
         let mut material_names = BTreeSet::new();
         for (k, m) in self.materials.iter().enumerate() {
             let at = ["materials", &quoted(&m.name)];
             if !material_names.insert(m.name.as_str()) {
-                return Err(invalid(
+                return Err(v.invalid(
                     &nth_name("materials", k),
                     format!("material name '{}' is used twice", m.name),
                 ));
             }
             rules::positive(m.density).map_err(|e| {
-                invalid(
+                v.invalid(
                     &[at[0], at[1], "density"],
                     format!("material '{}': density: {e}", m.name),
                 )
             })?;
             m.model
                 .check()
-                .map_err(|e| invalid(&at, format!("material '{}': {e}", m.name)))?;
+                .map_err(|e| v.invalid(&at, format!("material '{}': {e}", m.name)))?;
         }
+        Ok(material_names)
+    }
 
+    /// The bodies against the grid and the materials; returns their names.
+    fn check_bodies<'s>(
+        &'s self,
+        v: &Locator,
+        material_names: &BTreeSet<&'s str>,
+    ) -> Result<BTreeSet<&'s str>, SceneError> {
         if self.bodies.is_empty() && self.blocks.is_empty() {
             let message = "the scene has nothing to simulate: expected a body in `bodies` or a block in `blocks`";
-            return Err(invalid(&["bodies"], message.into()));
+            return Err(v.invalid(&["bodies"], message.into()));
         }
-        let (grid_min, grid_max) = (grid.origin, grid.max());
-        let margin = self.settings.shape_function.required_margin_cells() * grid.cell_size;
         let mut body_names = BTreeSet::new();
         let mut total_points: Real = 0.0;
         for (k, b) in self.bodies.iter().enumerate() {
             let name = quoted(&b.name);
-            let fail = |field: &str, message: String| invalid(&["bodies", &name, field], message);
+            let fail = |field: &str, message: String| v.invalid(&["bodies", &name, field], message);
             if !body_names.insert(b.name.as_str()) {
-                return Err(invalid(
+                return Err(v.invalid(
                     &nth_name("bodies", k),
                     format!("body name '{}' is used twice", b.name),
                 ));
@@ -208,157 +268,194 @@ impl Scene {
             b.shape
                 .check()
                 .map_err(|e| fail("shape", format!("body '{}': {e}", b.name)))?;
-            // Estimated from the shape before its points are made.
-            let estimate = b
-                .shape
-                .point_estimate(grid.cell_size / Real::from(b.points_per_cell));
-            if total_points + estimate > MAX_POINTS as Real {
-                return Err(fail(
-                    "shape",
-                    format!(
-                        "body '{}': about {estimate:.3e} points at {} per cell of {} m{}: more than the {MAX_POINTS} a scene may hold",
-                        b.name,
-                        b.points_per_cell,
-                        grid.cell_size,
-                        if total_points > 0.0 {
-                            format!(
-                                ", {:.3e} with the bodies before it",
-                                total_points + estimate
-                            )
-                        } else {
-                            String::new()
-                        }
-                    ),
-                ));
-            }
-            let points = b
-                .shape
-                .points(grid.origin, grid.cell_size, b.points_per_cell);
-            let spacing = grid.cell_size / Real::from(b.points_per_cell);
-            // A listed point's whole domain must be inside (a lattice's
-            // points are inside their outline by construction), and no
-            // larger than a cell: uGIMP's three-node stencil needs l ≤ h / 2.
-            if let Shape::Points { file, .. } = &b.shape {
-                let cell = grid.cell_size * grid.cell_size;
-                if let Some((p, volume)) = points
-                    .iter()
-                    .map(|p| (p, p.domain(spacing).0))
-                    .find(|&(_, volume)| volume > cell)
-                {
-                    return Err(fail(
-                        "shape",
-                        format!(
-                            "body '{}': the point at {} in '{file}'{} has volume {volume}, more than a cell ({cell}): its domain would reach beyond the nodes next to it",
-                            b.name,
-                            p.position,
-                            p.at_line(),
-                        ),
-                    ));
-                }
-            }
-            let (lo, hi) = b.shape.extent(spacing);
-            let (inner_min, inner_max) = (grid_min + margin, grid_max - margin);
-            if lo.cmplt(inner_min).any() || hi.cmpgt(inner_max).any() {
-                // For a point list, the first point past the edge and its line.
-                let outside = points.iter().find(|p| {
-                    let half = p.domain(spacing).1;
-                    (p.position - half).cmplt(inner_min).any()
-                        || (p.position + half).cmpgt(inner_max).any()
-                });
-                let which = match (&b.shape, outside) {
-                    (Shape::Points { file, .. }, Some(p)) => format!(
-                        ": the point at {} in '{file}'{} reaches past it",
-                        p.position,
-                        p.at_line()
-                    ),
-                    _ => String::new(),
-                };
-                return Err(fail(
-                    "shape",
-                    format!(
-                        "body '{}' (from {lo} to {hi}) is not inside the grid (from {grid_min} to {grid_max}{}){which}",
-                        b.name,
-                        if margin > 0.0 {
-                            format!(", less a margin of {margin} m that the B-spline needs")
-                        } else {
-                            String::new()
-                        }
-                    ),
-                ));
-            }
+            let points = self.check_body_points(v, b, total_points)?;
             total_points += points.len() as Real;
-            if points.is_empty() {
-                return Err(fail(
-                    "shape",
-                    format!(
-                        "body '{}' has no point: its shape is smaller than the point spacing",
-                        b.name
-                    ),
-                ));
-            }
-            if let InitialVelocity::Field { x, y } = &b.velocity {
-                let field = VelocityField::parse(x, y)
-                    .map_err(|e| fail("velocity", format!("body '{}': {e}", b.name)))?;
-                for p in &points {
-                    field
-                        .at(p.position)
-                        .map_err(|e| fail("velocity", format!("body '{}': {e}", b.name)))?;
-                }
-            }
-            if let Some(InitialStress::Geostatic { k0, surface }) = &b.initial_stress {
-                rules::non_negative(*k0)
-                    .map_err(|e| fail("initial_stress", format!("body '{}': k0: {e}", b.name)))?;
-                if surface.is_some_and(|s| !s.is_finite()) {
-                    let message =
-                        format!("body '{}': the geostatic surface must be finite", b.name);
-                    return Err(fail("initial_stress", message));
-                }
-                if self.gravity.y.is_nan() || self.gravity.y >= 0.0 {
-                    let message = format!(
-                        "body '{}': geostatic stress needs gravity pointing down (g_y < 0), got {}",
-                        b.name, self.gravity
-                    );
-                    return Err(fail("initial_stress", message));
-                }
-                // These models compute the stress from the deformation (F,
-                // or the density), so the first step would replace it.
-                let from_deformation = self.materials.iter().any(|m| {
-                    m.name == b.material
-                        && matches!(
-                            m.model,
-                            MaterialModel::NeoHookean(_) | MaterialModel::NewtonianFluid(_)
-                        )
-                });
-                if from_deformation {
-                    let message = format!(
-                        "body '{}': material '{}' computes its stress from the deformation (NeoHookean from F, NewtonianFluid from the density), so an initial stress would be lost at the first step; let the body settle under gravity in a stage instead",
-                        b.name, b.material
-                    );
-                    return Err(fail("initial_stress", message));
-                }
-            }
-            for c in &b.constraints {
-                if !(c.min.is_finite() && c.max.is_finite()) || c.min.cmpgt(c.max).any() {
-                    return Err(fail(
-                        "constraints",
-                        format!(
-                            "body '{}': constraint region needs finite min ≤ max, got {} and {}",
-                            b.name, c.min, c.max
-                        ),
-                    ));
-                }
-            }
+            self.check_body_initial_state(v, b, &points)?;
         }
 
         if let Some(r) = contact_radius_error(self) {
-            return Err(invalid(&["bodies", &quoted(&r.0), "contact_radius"], r.1));
+            return Err(v.invalid(&["bodies", &quoted(&r.0), "contact_radius"], r.1));
         }
+        Ok(body_names)
+    }
+
+    /// A body's points, made from its shape: within the cap on the scene's
+    /// points (`total_points` made before it), inside the grid less the
+    /// kernel's margin, a listed point's domain no larger than a cell, and
+    /// at least one.
+    fn check_body_points(
+        &self,
+        v: &Locator,
+        b: &BodySpec,
+        total_points: Real,
+    ) -> Result<Vec<ListedPoint>, SceneError> {
+        let grid = &self.grid;
+        let (grid_min, grid_max) = (grid.origin, grid.max());
+        let margin = self.settings.shape_function.required_margin_cells() * grid.cell_size;
+        let name = quoted(&b.name);
+        let fail = |field: &str, message: String| v.invalid(&["bodies", &name, field], message);
+        // Estimated from the shape before its points are made.
+        let estimate = b
+            .shape
+            .point_estimate(grid.cell_size / Real::from(b.points_per_cell));
+        if total_points + estimate > MAX_POINTS as Real {
+            return Err(fail(
+                "shape",
+                format!(
+                    "body '{}': about {estimate:.3e} points at {} per cell of {} m{}: more than the {MAX_POINTS} a scene may hold",
+                    b.name,
+                    b.points_per_cell,
+                    grid.cell_size,
+                    if total_points > 0.0 {
+                        format!(
+                            ", {:.3e} with the bodies before it",
+                            total_points + estimate
+                        )
+                    } else {
+                        String::new()
+                    }
+                ),
+            ));
+        }
+        let points = b
+            .shape
+            .points(grid.origin, grid.cell_size, b.points_per_cell);
+        let spacing = grid.cell_size / Real::from(b.points_per_cell);
+        // A listed point's whole domain must be inside (a lattice's
+        // points are inside their outline by construction), and no
+        // larger than a cell: uGIMP's three-node stencil needs l ≤ h / 2.
+        if let Shape::Points { file, .. } = &b.shape {
+            let cell = grid.cell_size * grid.cell_size;
+            if let Some((p, volume)) = points
+                .iter()
+                .map(|p| (p, p.domain(spacing).0))
+                .find(|&(_, volume)| volume > cell)
+            {
+                return Err(fail(
+                    "shape",
+                    format!(
+                        "body '{}': the point at {} in '{file}'{} has volume {volume}, more than a cell ({cell}): its domain would reach beyond the nodes next to it",
+                        b.name,
+                        p.position,
+                        p.at_line(),
+                    ),
+                ));
+            }
+        }
+        let (lo, hi) = b.shape.extent(spacing);
+        let (inner_min, inner_max) = (grid_min + margin, grid_max - margin);
+        if lo.cmplt(inner_min).any() || hi.cmpgt(inner_max).any() {
+            // For a point list, the first point past the edge and its line.
+            let outside = points.iter().find(|p| {
+                let half = p.domain(spacing).1;
+                (p.position - half).cmplt(inner_min).any()
+                    || (p.position + half).cmpgt(inner_max).any()
+            });
+            let which = match (&b.shape, outside) {
+                (Shape::Points { file, .. }, Some(p)) => format!(
+                    ": the point at {} in '{file}'{} reaches past it",
+                    p.position,
+                    p.at_line()
+                ),
+                _ => String::new(),
+            };
+            return Err(fail(
+                "shape",
+                format!(
+                    "body '{}' (from {lo} to {hi}) is not inside the grid (from {grid_min} to {grid_max}{}){which}",
+                    b.name,
+                    if margin > 0.0 {
+                        format!(", less a margin of {margin} m that the B-spline needs")
+                    } else {
+                        String::new()
+                    }
+                ),
+            ));
+        }
+        if points.is_empty() {
+            return Err(fail(
+                "shape",
+                format!(
+                    "body '{}' has no point: its shape is smaller than the point spacing",
+                    b.name
+                ),
+            ));
+        }
+        Ok(points)
+    }
+
+    /// A body's initial velocity field (defined at every point), initial
+    /// stress and region constraints.
+    fn check_body_initial_state(
+        &self,
+        v: &Locator,
+        b: &BodySpec,
+        points: &[ListedPoint],
+    ) -> Result<(), SceneError> {
+        let name = quoted(&b.name);
+        let fail = |field: &str, message: String| v.invalid(&["bodies", &name, field], message);
+        if let InitialVelocity::Field { x, y } = &b.velocity {
+            let field = VelocityField::parse(x, y)
+                .map_err(|e| fail("velocity", format!("body '{}': {e}", b.name)))?;
+            for p in points {
+                field
+                    .at(p.position)
+                    .map_err(|e| fail("velocity", format!("body '{}': {e}", b.name)))?;
+            }
+        }
+        if let Some(InitialStress::Geostatic { k0, surface }) = &b.initial_stress {
+            rules::non_negative(*k0)
+                .map_err(|e| fail("initial_stress", format!("body '{}': k0: {e}", b.name)))?;
+            if surface.is_some_and(|s| !s.is_finite()) {
+                let message = format!("body '{}': the geostatic surface must be finite", b.name);
+                return Err(fail("initial_stress", message));
+            }
+            if self.gravity.y.is_nan() || self.gravity.y >= 0.0 {
+                let message = format!(
+                    "body '{}': geostatic stress needs gravity pointing down (g_y < 0), got {}",
+                    b.name, self.gravity
+                );
+                return Err(fail("initial_stress", message));
+            }
+            // These models compute the stress from the deformation (F,
+            // or the density), so the first step would replace it.
+            let from_deformation = self.materials.iter().any(|m| {
+                m.name == b.material
+                    && matches!(
+                        m.model,
+                        MaterialModel::NeoHookean(_) | MaterialModel::NewtonianFluid(_)
+                    )
+            });
+            if from_deformation {
+                let message = format!(
+                    "body '{}': material '{}' computes its stress from the deformation (NeoHookean from F, NewtonianFluid from the density), so an initial stress would be lost at the first step; let the body settle under gravity in a stage instead",
+                    b.name, b.material
+                );
+                return Err(fail("initial_stress", message));
+            }
+        }
+        for c in &b.constraints {
+            if !(c.min.is_finite() && c.max.is_finite()) || c.min.cmpgt(c.max).any() {
+                return Err(fail(
+                    "constraints",
+                    format!(
+                        "body '{}': constraint region needs finite min ≤ max, got {} and {}",
+                        b.name, c.min, c.max
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The rigid blocks; returns their names.
+    fn check_blocks<'s>(&'s self, v: &Locator) -> Result<BTreeSet<&'s str>, SceneError> {
         let mut block_names = BTreeSet::new();
         for (k, block) in self.blocks.iter().enumerate() {
             let name = quoted(&block.name);
-            let fail = |field: &str, message: String| invalid(&["blocks", &name, field], message);
+            let fail = |field: &str, message: String| v.invalid(&["blocks", &name, field], message);
             if !block_names.insert(block.name.as_str()) {
-                return Err(invalid(
+                return Err(v.invalid(
                     &nth_name("blocks", k),
                     format!("block name '{}' is used twice", block.name),
                 ));
@@ -414,27 +511,41 @@ impl Scene {
                 })?;
             }
         }
+        Ok(block_names)
+    }
+
+    /// The contact settings.
+    fn check_contact(&self, v: &Locator) -> Result<(), SceneError> {
         if self.contact.iter_period == Some(0) {
-            return Err(invalid(
+            return Err(v.invalid(
                 &["contact", "iter_period"],
                 "contact.iter_period must be at least 1".into(),
             ));
         }
         if let ForceApplication::Traction { points: 0 } = self.contact.force_application {
             let message = "contact.force_application: Traction needs at least 1 point".into();
-            return Err(invalid(&["contact", "force_application"], message));
+            return Err(v.invalid(&["contact", "force_application"], message));
         }
         if let Some(margin) = self.contact.margin {
             rules::positive(margin)
-                .map_err(|e| invalid(&["contact", "margin"], format!("contact.margin: {e}")))?;
+                .map_err(|e| v.invalid(&["contact", "margin"], format!("contact.margin: {e}")))?;
         }
+        Ok(())
+    }
 
+    /// The probes and the output intervals and curves.
+    fn check_probes_and_output<'s>(
+        &'s self,
+        v: &Locator,
+        body_names: &BTreeSet<&'s str>,
+        block_names: &BTreeSet<&'s str>,
+    ) -> Result<(), SceneError> {
         let mut probe_names = BTreeSet::new();
         let mut probe_files = BTreeMap::new();
         for (k, p) in self.probes.iter().enumerate() {
             let at = ["probes", &quoted(&p.name)];
             if !probe_names.insert(p.name.as_str()) {
-                return Err(invalid(
+                return Err(v.invalid(
                     &nth_name("probes", k),
                     format!("probe name '{}' is used twice", p.name),
                 ));
@@ -442,7 +553,7 @@ impl Scene {
             // Compared without case: macOS and Windows file systems ignore it.
             let file = rules::file_safe(&p.name).to_ascii_lowercase();
             if let Some(other) = probe_files.insert(file, p.name.as_str()) {
-                return Err(invalid(
+                return Err(v.invalid(
                     &at,
                     format!(
                         "probes '{other}' and '{}' would write the same plot files ({PROBE_PLOT_PREFIX}{}_*.png): file names keep only letters, digits, '-' and '_'",
@@ -452,13 +563,13 @@ impl Scene {
                 ));
             }
             if !p.at.is_finite() {
-                return Err(invalid(
+                return Err(v.invalid(
                     &[at[0], at[1], "at"],
                     format!("probe '{}': location must be finite, got {}", p.name, p.at),
                 ));
             }
             if !body_names.contains(p.body.as_str()) {
-                return Err(invalid(
+                return Err(v.invalid(
                     &[at[0], at[1], "body"],
                     format!(
                         "probe '{}': unknown body '{}'; expected one of {:?}",
@@ -471,9 +582,9 @@ impl Scene {
             ("frame_interval", self.output.frame_interval),
             ("probe_interval", self.output.probe_interval),
         ] {
-            if let Some(v) = value {
-                rules::positive(v)
-                    .map_err(|e| invalid(&["output", field], format!("output.{field}: {e}")))?;
+            if let Some(value) = value {
+                rules::positive(value)
+                    .map_err(|e| v.invalid(&["output", field], format!("output.{field}: {e}")))?;
             }
         }
 
@@ -481,13 +592,13 @@ impl Scene {
         for (k, curve) in self.output.curves.iter().enumerate() {
             let at = quoted(&curve.name);
             let fail = |field: &str, message: String| {
-                invalid(
+                v.invalid(
                     &["output", "curves", &at, field],
                     format!("curve '{}': {message}", curve.name),
                 )
             };
             let fail_name = |message: String| {
-                invalid(
+                v.invalid(
                     &["output", "curves", &at],
                     format!("curve '{}': {message}", curve.name),
                 )
@@ -496,7 +607,7 @@ impl Scene {
             // Compared without case: macOS and Windows file systems ignore it.
             let file = curve.name.to_lowercase();
             if !curve_names.insert(file.clone()) {
-                return Err(invalid(
+                return Err(v.invalid(
                     &[&["output"], nth_name("curves", k).as_slice()].concat(),
                     format!(
                         "curve '{}': the name is used twice (names are files: letter case does not tell them apart)",
@@ -543,7 +654,16 @@ impl Scene {
                 return Err(fail("force_scale", "scales must be finite".into()));
             }
         }
+        Ok(())
+    }
 
+    /// The body contact laws and contact groups.
+    fn check_body_contacts<'s>(
+        &'s self,
+        v: &Locator,
+        body_names: &BTreeSet<&'s str>,
+    ) -> Result<(), SceneError> {
+        let grid = &self.grid;
         let group_names: BTreeSet<&str> = self
             .bodies
             .iter()
@@ -554,7 +674,7 @@ impl Scene {
             .iter()
             .find(|b| b.group.as_deref().is_some_and(|g| body_names.contains(g)))
         {
-            return Err(invalid(
+            return Err(v.invalid(
                 &["bodies", &quoted(&b.name), "group"],
                 format!(
                     "body '{}': group '{}' has the name of a body; body_contacts could not tell them apart",
@@ -572,7 +692,7 @@ impl Scene {
                 .collect();
             let members = |name: &str| {
                 self.contact_members(name).ok_or_else(|| {
-                    invalid(
+                    v.invalid(
                         &at,
                         format!(
                             "body_contacts: unknown body or group '{name}'; expected one of the bodies {body_names:?} or groups {group_names:?}"
@@ -589,7 +709,7 @@ impl Scene {
             for &i in &first {
                 for &j in &second {
                     if same_layer(i, j) {
-                        return Err(invalid(
+                        return Err(v.invalid(
                             &at,
                             format!(
                                 "body_contacts ('{a}', '{b}'): body '{}' would contact '{}', which shares its layer (the same body or contact group): such bodies meet through the grid",
@@ -598,7 +718,7 @@ impl Scene {
                         ));
                     }
                     if !pairs.insert((i.min(j), i.max(j))) {
-                        return Err(invalid(
+                        return Err(v.invalid(
                             &at,
                             format!(
                                 "body_contacts ('{a}', '{b}'): the bodies '{}' and '{}' have two laws",
@@ -609,7 +729,7 @@ impl Scene {
                 }
             }
             spec.law.check().map_err(|e| {
-                invalid(
+                v.invalid(
                     &std::iter::once("body_contacts")
                         .chain(std::iter::repeat_n("law", k + 1))
                         .collect::<Vec<_>>(),
@@ -623,7 +743,7 @@ impl Scene {
                 .iter()
                 .find(|b| b.contact_radius.is_some_and(|r| r > 0.5 * grid.cell_size))
         {
-            return Err(invalid(
+            return Err(v.invalid(
                 &["bodies", &quoted(&b.name), "contact_radius"],
                 format!(
                     "body '{}': contact_radius {} is more than half a cell ({}): body contacts look for overlapping disks in neighbouring cells only",
@@ -634,7 +754,7 @@ impl Scene {
             ));
         }
         if !self.body_contacts.is_empty() && self.bodies.len() > MAX_CONTACT_BODIES {
-            return Err(invalid(
+            return Err(v.invalid(
                 &["body_contacts"],
                 format!(
                     "body_contacts: at most {MAX_CONTACT_BODIES} bodies are supported, the scene has {}",
@@ -642,7 +762,16 @@ impl Scene {
                 ),
             ));
         }
+        Ok(())
+    }
 
+    /// The stages.
+    fn check_stages<'s>(
+        &'s self,
+        v: &Locator,
+        body_names: &BTreeSet<&'s str>,
+        block_names: &BTreeSet<&'s str>,
+    ) -> Result<(), SceneError> {
         let mut stage_names = BTreeSet::new();
         let mut present: BTreeSet<&str> = self
             .blocks
@@ -653,13 +782,13 @@ impl Scene {
         for (k, stage) in self.stages.iter().enumerate() {
             let at = quoted(&stage.name);
             let fail = |field: &str, message: String| {
-                invalid(
+                v.invalid(
                     &["stages", &at, field],
                     format!("stage '{}': {message}", stage.name),
                 )
             };
             if !stage_names.insert(stage.name.as_str()) {
-                return Err(invalid(
+                return Err(v.invalid(
                     &nth_name("stages", k),
                     format!("stage '{}': the name is used twice", stage.name),
                 ));
