@@ -152,25 +152,14 @@ pub fn grid_to_particle(
                 };
                 let step = if order >= 1 {
                     let smoothed = stencil.interpolate(star, origin, row_len);
-                    let next = smoothed + change;
-                    let step = (grid_old + 0.5 * (next - *v)) * dt;
-                    *v = next;
-                    step
+                    xpic_update(v, smoothed, change, grid_old, dt)
                 } else {
-                    let step = match position_update {
-                        Some(PositionUpdate::NewGridVelocity) => grid_new * dt,
-                        // Moved below, once every point has its new velocity.
-                        Some(PositionUpdate::RemappedVelocity) => DVec2::ZERO,
-                        _ => (0.5 * (grid_old + grid_new) - 0.5 * beta * (*v - grid_old)) * dt,
+                    let nodal = NodalVelocities {
+                        old: grid_old,
+                        new: grid_new,
+                        change,
                     };
-                    // Undamped, v^n + a_p Δt is v^{n+1} itself (kept exact).
-                    let pic = if alpha == 0.0 {
-                        grid_new
-                    } else {
-                        grid_old + change
-                    };
-                    *v = (1.0 - beta) * (*v + change) + beta * pic;
-                    step
+                    flip_pic_update(v, nodal, (beta, alpha), position_update, dt)
                 };
                 if takes {
                     *taken = 0.5 * m * (flip.length_squared() - v.length_squared());
@@ -221,6 +210,49 @@ pub fn grid_to_particle(
             );
         }
     }
+}
+
+/// A point's interpolated nodal velocities: v^n, v^{n+1} and the change
+/// between them less particle damping.
+#[derive(Clone, Copy)]
+struct NodalVelocities {
+    old: DVec2,
+    new: DVec2,
+    change: DVec2,
+}
+
+/// Eqs. 12a/12b: V^{n+1} = S v* + a_p Δt (`smoothed` is S v*), and the step
+/// x^{n+1} − x^n = (v^n + ½ (V^{n+1} − V^n)) Δt.
+#[inline(always)]
+fn xpic_update(v: &mut DVec2, smoothed: DVec2, change: DVec2, grid_old: DVec2, dt: Real) -> DVec2 {
+    let next = smoothed + change;
+    let step = (grid_old + 0.5 * (next - *v)) * dt;
+    *v = next;
+    step
+}
+
+/// Eq. 11a with PIC fraction β and particle damping α, and the step of the
+/// position update (eq. 11b, the new grid velocity, or none for the
+/// remapped velocity, which moves the points once every point has its new
+/// velocity).
+#[inline(always)]
+fn flip_pic_update(
+    v: &mut DVec2,
+    nodal: NodalVelocities,
+    (beta, alpha): (Real, Real),
+    update: Option<PositionUpdate>,
+    dt: Real,
+) -> DVec2 {
+    let NodalVelocities { old, new, change } = nodal;
+    let step = match update {
+        Some(PositionUpdate::NewGridVelocity) => new * dt,
+        Some(PositionUpdate::RemappedVelocity) => DVec2::ZERO,
+        _ => (0.5 * (old + new) - 0.5 * beta * (*v - old)) * dt,
+    };
+    // Undamped, v^n + a_p Δt is v^{n+1} itself (kept exact).
+    let pic = if alpha == 0.0 { new } else { old + change };
+    *v = (1.0 - beta) * (*v + change) + beta * pic;
+    step
 }
 
 /// Moves every point by x += Σ S_ip ṽ_i Δt (`PositionUpdate::RemappedVelocity`)
