@@ -21,8 +21,11 @@
 #![warn(missing_docs)]
 
 pub mod bench;
+pub mod checkpoint;
 pub mod components;
 pub mod contact;
+pub mod files;
+pub mod geometry;
 pub mod io;
 pub mod materials;
 pub mod math;

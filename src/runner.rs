@@ -14,8 +14,8 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+use crate::checkpoint::CheckpointError;
 use crate::io::RunOutput;
-use crate::io::checkpoint::CheckpointError;
 use crate::io::manifest::written_by;
 use crate::math::Real;
 use crate::resources::{StageLog, StagePlan};
@@ -419,9 +419,8 @@ impl Runner {
             }
             Start::Fresh | Start::Restart => {
                 if options.start == Start::Restart && checkpoint.exists() {
-                    std::fs::remove_file(checkpoint).map_err(|e| {
-                        RunError::Output(crate::io::manifest::located(checkpoint, e))
-                    })?;
+                    std::fs::remove_file(checkpoint)
+                        .map_err(|e| RunError::Output(crate::files::located(checkpoint, e)))?;
                 }
                 let (output, removed) = RunOutput::create(dir, scene, source.as_deref(), sim)
                     .map_err(RunError::Output)?;
@@ -446,7 +445,7 @@ fn stage_and_length(sim: &Simulation, total: u64) -> (Option<&str>, u64) {
     let Some(plan) = sim.world().get_resource::<StagePlan>() else {
         return (None, total);
     };
-    let stages = &plan.scene.stages;
+    let stages = &plan.stages;
     let Some(current) = stages.get(plan.progress.current) else {
         return (None, total);
     };

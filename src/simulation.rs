@@ -1,13 +1,11 @@
 //! The library entry point: a world and its step schedule.
 
+use crate::checkpoint::KeptState;
+use crate::checkpoint::StateHasher;
+use crate::checkpoint::{CheckpointError, restore_checkpoint, scene_fingerprint, write_checkpoint};
 use crate::components::{
     BlockId, BodyName, MaterialPoints, Pose, RigidVelocity, bodies_in_scene_order,
 };
-use crate::io::checkpoint::{
-    CheckpointError, restore_checkpoint, scene_fingerprint, write_checkpoint,
-};
-use crate::io::kept_state::KeptState;
-use crate::io::state_hash::StateHasher;
 use crate::math::Real;
 use crate::resources::{Clock, Diagnostics, NumericalFailure};
 use crate::scene::{Scene, SceneError, spawn_scene};
@@ -115,7 +113,7 @@ impl Simulation {
         restore_checkpoint(&mut self.world, scene, self.fingerprint, &self.kept, path)
     }
 
-    /// Writes the state of the run to `path` (see [`crate::io::checkpoint`]),
+    /// Writes the state of the run to `path` (see [`crate::checkpoint`]),
     /// replacing the file only once the new one is whole. Fails if a
     /// resource registered with [`Simulation::keep_in_checkpoints`] is
     /// missing from the world.

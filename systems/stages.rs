@@ -10,7 +10,8 @@ use crate::resources::{
     AppliedLoad, Clock, ContactWork, Geometry, Gravity, Grid, Settings, StageEndReason, StageLog,
     StagePlan, StageRecord,
 };
-use crate::scene::{Side, StageEnd, spawn_block};
+use crate::resources::{ContactSettings, Side, StageEnd};
+use crate::rigid::{PlacementChecks, placement_warnings};
 use bevy_ecs::prelude::*;
 use std::collections::BTreeMap;
 
@@ -45,7 +46,7 @@ fn stage_end(world: &mut World, plan: &mut StagePlan) -> Option<StageEndReason> 
     let elapsed = clock.time - plan.progress.started;
     let elapsed_enough = |t: Real| elapsed >= t - 0.5 * clock.dt;
     let bodies = &plan.bodies;
-    let end = plan.scene.stages[plan.progress.current].end.clone();
+    let end = plan.stages[plan.progress.current].end.clone();
     let settled = match end {
         StageEnd::Duration(d) => {
             if elapsed_enough(d) {
@@ -134,7 +135,7 @@ pub fn dynamic_blocks_in_scene_order(world: &mut World) -> Vec<Entity> {
 /// Records the end of the current stage and enters the next, or ends the run.
 fn finish_stage(world: &mut World, plan: &mut StagePlan, reason: StageEndReason) {
     let clock = *world.resource::<Clock>();
-    let stage = &plan.scene.stages[plan.progress.current];
+    let stage = &plan.stages[plan.progress.current];
     let mut log = world.resource_mut::<StageLog>();
     log.records.push(StageRecord {
         index: plan.progress.current,
@@ -152,7 +153,7 @@ fn finish_stage(world: &mut World, plan: &mut StagePlan, reason: StageEndReason)
             clock.time
         )),
         StageEndReason::SceneEnd => {
-            let later = plan.scene.stages.len() - 1 - plan.progress.current;
+            let later = plan.stages.len() - 1 - plan.progress.current;
             let rest = match later {
                 0 => String::new(),
                 1 => "; the stage after it was not run".into(),
@@ -172,7 +173,7 @@ fn finish_stage(world: &mut World, plan: &mut StagePlan, reason: StageEndReason)
         StageEndReason::Duration | StageEndReason::Condition => {}
     }
     let next = plan.progress.current + 1;
-    if reason != StageEndReason::SceneEnd && next < plan.scene.stages.len() {
+    if reason != StageEndReason::SceneEnd && next < plan.stages.len() {
         let warnings = enter_stage(world, plan, next);
         world.resource_mut::<StageLog>().warnings.extend(warnings);
         // time.end on the boundary: the next stage has begun (as in a run
@@ -190,7 +191,7 @@ fn finish_stage(world: &mut World, plan: &mut StagePlan, reason: StageEndReason)
 /// clock. Returns warnings (e.g. an added block overlapping a body).
 pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec<String> {
     let mut warnings = Vec::new();
-    let spec = plan.scene.stages[index].clone();
+    let spec = plan.stages[index].clone();
     {
         let mut settings = world.resource_mut::<Settings>();
         if let Some(beta) = spec.pic_fraction {
@@ -217,12 +218,15 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
         }
     }
     let bodies = bodies_in_scene_order(world);
+    let checks = PlacementChecks {
+        dt: world.resource::<Clock>().dt,
+        penetration: world.resource::<ContactSettings>().penetration,
+        geometry: world.resource::<Settings>().geometry,
+    };
     for name in &spec.add_blocks {
-        if let Some(k) = plan.scene.blocks.iter().position(|b| &b.name == name) {
-            match spawn_block(&plan.scene, k, world, &bodies) {
-                Ok(w) => warnings.extend(w),
-                Err(e) => warnings.push(format!("stage '{}': {e}", spec.name)),
-            }
+        if let Some(template) = plan.absent_blocks.iter().find(|b| &b.id.name == name) {
+            warnings.extend(placement_warnings(template, world, &bodies, checks));
+            template.spawn(world);
         }
     }
     for change in &spec.block_velocities {

@@ -3,8 +3,8 @@
 use super::contact_transfer::add_with_hat_functions;
 use crate::components::{GridLayer, MaterialPoints};
 use crate::math::DVec2;
+use crate::resources::Side;
 use crate::resources::{Grid, LoadWork, LoadedEdge, Settings, StagePlan};
-use crate::scene::Side;
 use bevy_ecs::prelude::*;
 
 /// Adds the surface tractions the stages set (`StageProgress::loads`) to

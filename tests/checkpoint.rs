@@ -7,8 +7,8 @@
 
 mod common;
 
+use mpdem::checkpoint::CheckpointError;
 use mpdem::components::{BlockContacts, BlockId, NeighbourList, StepTravel};
-use mpdem::io::checkpoint::CheckpointError;
 use mpdem::prelude::*;
 use mpdem::resources::{
     BlockContactHistory, BlockLog, BodyPairLog, EnergyLog, Probes, StageEndReason, StageLog,

@@ -241,7 +241,7 @@ fn a_point_lists_line_numbers_are_not_part_of_the_scene() {
         unreachable!()
     };
     points.iter_mut().for_each(|p| p.line += 1);
-    use mpdem::io::checkpoint::scene_fingerprint;
+    use mpdem::checkpoint::scene_fingerprint;
     assert_eq!(scene_fingerprint(&scene), scene_fingerprint(&moved));
 }
 

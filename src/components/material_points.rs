@@ -1,8 +1,8 @@
 //! The material points of one body as struct-of-arrays columns.
 
+use crate::geometry::Geometry;
 use crate::materials::ConstitutiveModel;
 use crate::math::{DMat2, DVec2, Real, SymTensor};
-use crate::resources::Geometry;
 use crate::scatter::CHUNK_POINTS;
 use bevy_ecs::prelude::Component;
 use rayon::prelude::*;

@@ -2,6 +2,7 @@
 //! points as columns ([`MaterialPoints`]), its [`Material`], its own
 //! [`GridLayer`] and the scratch space of its grid transfers.
 
+mod block_template;
 mod body;
 mod grid_layer;
 mod material_points;
@@ -9,6 +10,7 @@ mod rigid;
 mod transfer_scratch;
 
 pub use crate::node_rect::NodeRect;
+pub use block_template::BlockTemplate;
 pub use body::{
     BodyAcceleration, BodyIndex, BodyName, Material, RegionConstraint, RegionConstraints,
     bodies_in_scene_order, sort_into_scene_order,

@@ -11,6 +11,7 @@
 //! checkpoint is not listed: a new run started without `--resume` by
 //! mistake must not destroy the state an earlier run took hours to reach.
 
+use crate::files::{PARTIAL_PREFIX, located};
 use std::collections::BTreeSet;
 use std::fs::{File, OpenOptions};
 use std::io::{BufRead, BufReader, Write};
@@ -26,19 +27,6 @@ pub const SIGNATURE: &str =
 /// The start of the list's second line, which names the scene file whose
 /// run wrote the folder (absolute), when the run had one.
 pub const SCENE_PREFIX: &str = "# scene: ";
-
-/// The start of the temporary names files are written under before they
-/// are renamed into place (see `RunOutput`): one left by a run killed while
-/// writing is removed by the next run.
-pub const PARTIAL_PREFIX: &str = ".partial-";
-
-/// The temporary name `path` is written under before it is renamed into
-/// place: in the same folder, [`PARTIAL_PREFIX`] before its name (so its
-/// extension, which the PNG writer reads, is kept).
-pub fn partial_path(path: &Path) -> PathBuf {
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
-    path.with_file_name(format!("{PARTIAL_PREFIX}{}", name.unwrap_or_default()))
-}
 
 /// The files of a run's output folder, relative to it, as written to
 /// [`MANIFEST_FILE`].
@@ -189,14 +177,10 @@ fn read_list(dir: &Path) -> std::io::Result<Vec<String>> {
     Ok(names)
 }
 
-/// `e` with the file it concerns.
-pub fn located(path: &Path, e: std::io::Error) -> std::io::Error {
-    std::io::Error::new(e.kind(), format!("{}: {e}", path.display()))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::files::partial_path;
 
     fn folder(tag: &str) -> PathBuf {
         let dir = std::env::temp_dir().join(format!("mpdem-manifest-{tag}-{}", std::process::id()));

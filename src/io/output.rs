@@ -2,38 +2,21 @@
 //! CSV series during the run; PNG plots at the end.
 
 use super::csv::{self, CsvSeries};
-use super::manifest::{OutputManifest, located, partial_path};
+use super::manifest::OutputManifest;
 use super::plot::{Series, SeriesStyle, plot_points, plot_series};
 use super::vtk::{
     PointFrame, read_collection, write_collection, write_outlines, write_point_frame,
 };
 use crate::components::{BlockId, BlockOutline, BodyIndex, MaterialPoints, Pose};
+use crate::files::{located, partial_path};
 use crate::math::{DVec2, Real};
 use crate::resources::{BlockLog, BodyPairLog, EnergyLog, Grid, Probes, StageLog};
 use crate::rules::file_safe;
-use crate::scene::{CurveSpec, Scene};
+use crate::scene::{CurveSpec, PROBE_PLOT_PREFIX, Scene};
 use crate::simulation::Simulation;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
-
-/// The stems of the files a run writes into its folder besides the
-/// curves' (`<stem>.csv`, `.png`, `.pvd`, `.bin`): a curve may not take one.
-/// Probe plots are `probe_<name>_<quantity>.png`, so no curve name may
-/// start with [`PROBE_PLOT_PREFIX`].
-pub const RUN_FILE_STEMS: [&str; 8] = [
-    "points",
-    "blocks",
-    "probes",
-    "energy",
-    "body_contacts",
-    "stages",
-    "snapshot",
-    "checkpoint",
-];
-
-/// The start of every probe plot's file name.
-pub const PROBE_PLOT_PREFIX: &str = "probe_";
 
 /// Writes a run's results into one folder:
 /// * `vtk/points_NNNNN.vtu` every frame interval and `points.pvd` (open this in ParaView);

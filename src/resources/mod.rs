@@ -11,8 +11,10 @@ mod load_work;
 mod records;
 mod settings;
 mod shared_layers;
+mod stage_spec;
 mod stages;
 
+pub use crate::geometry::Geometry;
 pub use body_contacts::{
     BodyContacts, BodyPairContact, BodyPairLaw, DetectionChunk, MAX_CONTACT_BODIES, PairSummary,
     PairTally, law_between,
@@ -27,6 +29,7 @@ pub use records::{
     BlockLog, BlockPartSample, BlockSample, BodyPairLog, BodyPairSample, EnergyLog, EnergySample,
     Probe, ProbeSample, Probes,
 };
-pub use settings::{Geometry, Gravity, PositionUpdate, Settings, UpdateScheme};
+pub use settings::{Gravity, PositionUpdate, Settings, UpdateScheme};
 pub use shared_layers::SharedLayers;
+pub use stage_spec::{BlockVelocity, EdgeChanges, Side, StageEnd, StageSpec, SurfaceTraction};
 pub use stages::{AppliedLoad, StageEndReason, StageLog, StagePlan, StageProgress, StageRecord};

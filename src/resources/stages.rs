@@ -1,16 +1,19 @@
 //! The stage plan of a run and the record of its stage transitions.
 
+use super::{Side, StageSpec};
+use crate::components::BlockTemplate;
 use crate::math::{DVec2, Real, SymTensor};
-use crate::scene::{Scene, Side};
 use bevy_ecs::prelude::{Entity, Resource};
 use serde::{Deserialize, Serialize};
 
 /// The scene's stages and where the run is in them.
-#[derive(Resource, Clone, Debug)]
+#[derive(Resource, Clone)]
 pub struct StagePlan {
-    /// The scene the stages come from (blocks a stage adds are spawned
-    /// from it).
-    pub scene: Scene,
+    /// The scene's stages, in order.
+    pub stages: Vec<StageSpec>,
+    /// The blocks absent at the start, ready for the stages that add them
+    /// (in scene order).
+    pub absent_blocks: Vec<BlockTemplate>,
     /// The bodies in scene order, taken when the current stage began (the
     /// end conditions read them each step without querying the world).
     pub bodies: Vec<Entity>,

@@ -2,9 +2,11 @@
 //! integration of their motion.
 
 mod integrate;
+mod placement;
 mod shapes;
 mod substeps;
 
 pub use integrate::{advance, integrate_dynamic, velocity_at};
+pub use placement::{PlacementChecks, placement_warnings};
 pub use shapes::BlockShape;
 pub use substeps::{MAX_SUBSTEPS, substeps_needed};

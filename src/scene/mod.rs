@@ -16,17 +16,17 @@ pub mod point_file;
 mod shapes;
 mod spawn;
 mod spawn_blocks;
-mod stages;
 mod step_warnings;
 mod validate;
 mod velocity_field;
 
+pub use crate::resources::{
+    BlockVelocity, EdgeChanges, Side, StageEnd, StageSpec, SurfaceTraction,
+};
 pub use location::SourceLocation;
 pub use point_file::ListedPoint;
 pub use shapes::Shape;
 pub use spawn::spawn_scene;
-pub use spawn_blocks::spawn_block;
-pub use stages::{BlockVelocity, EdgeChanges, Side, StageEnd, StageSpec, SurfaceTraction};
 pub use velocity_field::VelocityField;
 
 use crate::components::{BodyAcceleration, RegionConstraint, RigidVelocity};
@@ -443,6 +443,24 @@ impl OutputSpec {
 pub fn whole_steps(interval: Real, dt: Real) -> u64 {
     ((interval / dt).round() as u64).max(1)
 }
+
+/// The stems of the files a run writes into its folder besides the
+/// curves' (`<stem>.csv`, `.png`, `.pvd`, `.bin`): a curve may not take one.
+/// Probe plots are `probe_<name>_<quantity>.png`, so no curve name may
+/// start with [`PROBE_PLOT_PREFIX`].
+pub const RUN_FILE_STEMS: [&str; 8] = [
+    "points",
+    "blocks",
+    "probes",
+    "energy",
+    "body_contacts",
+    "stages",
+    "snapshot",
+    "checkpoint",
+];
+
+/// The start of every probe plot's file name.
+pub const PROBE_PLOT_PREFIX: &str = "probe_";
 
 /// Errors of loading or validating a scene; each says where and what was expected.
 #[derive(Debug, thiserror::Error)]

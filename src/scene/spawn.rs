@@ -101,9 +101,9 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
             ));
         }
     }
-    warnings.extend(super::spawn_blocks::spawn_blocks(
-        scene, &mut world, &bodies,
-    )?);
+    let (block_warnings, absent_blocks) =
+        super::spawn_blocks::spawn_blocks(scene, &mut world, &bodies)?;
+    warnings.extend(block_warnings);
     let mut probes = Probes {
         probes: Vec::new(),
         every: scene.output.probe_every(clock.end, clock.dt),
@@ -247,7 +247,8 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
     world.insert_resource(crate::resources::LoadWork::default());
     if !scene.stages.is_empty() {
         let mut plan = StagePlan {
-            scene: scene.clone(),
+            stages: scene.stages.clone(),
+            absent_blocks,
             bodies: Vec::new(),
             dynamic_blocks: Vec::new(),
             progress: StageProgress::default(),

@@ -1,40 +1,42 @@
 //! Spawning the rigid blocks of a validated scene, with the warnings a user
 //! needs before running (blocks overlapping bodies, a time step above the
 //! contact stability limit, block contacts needing more sub-steps than are
-//! taken).
+//! taken); the blocks stages add are kept as templates.
 
 use super::{BlockSpec, MotionSpec, Scene, SceneError, SourceLocation};
 use crate::components::{
-    BlockContactLaw, BlockContacts, BlockId, BlockOutline, BodyName, MaterialPoints, NeighbourList,
-    PartReactions, Pose, Reaction, RigidMass, RigidMotion, RigidShape, RigidVelocity,
+    BlockContactLaw, BlockId, BlockOutline, BlockTemplate, Pose, RigidMass, RigidMotion,
+    RigidShape, RigidVelocity,
 };
-use crate::contact::disk_shape_contact;
-use crate::math::{DVec2, Real};
-use crate::resources::Penetration;
-use crate::rigid::{MAX_SUBSTEPS, substeps_needed};
+use crate::math::Real;
+use crate::rigid::{MAX_SUBSTEPS, PlacementChecks, placement_warnings, substeps_needed};
 use bevy_ecs::prelude::*;
-
-/// Overlap between a block and a body's disks where the block is placed
-/// (at the start, or when a stage adds it) above which a
-/// warning is given: a tenth of the disk radius, more than the few
-/// per-mille a body placed exactly on a block shows through round-off.
-const OVERLAP_WARNING_FRACTION: Real = 0.1;
 
 /// Spawns one entity per block present at the start (`present`), in scene
 /// order; `bodies` are the body entities in scene order. Returns the
-/// warnings.
+/// warnings and the templates of the blocks absent at the start (which
+/// stages add), in scene order.
 pub fn spawn_blocks(
     scene: &Scene,
     world: &mut World,
     bodies: &[Entity],
-) -> Result<Vec<String>, SceneError> {
+) -> Result<(Vec<String>, Vec<BlockTemplate>), SceneError> {
     let mut warnings = Vec::new();
+    let mut absent = Vec::new();
     let mut substep_input = Vec::with_capacity(scene.blocks.len());
+    let checks = PlacementChecks {
+        dt: scene.time.dt,
+        penetration: scene.contact.penetration,
+        geometry: scene.settings.geometry,
+    };
     for (index, spec) in scene.blocks.iter().enumerate() {
-        let (motion, mass, _) = block_motion(spec)?;
-        substep_input.push((motion, mass.mass, spec.contact));
+        let template = block_template(spec, index)?;
+        substep_input.push((template.motion, template.mass.mass, spec.contact));
         if spec.present {
-            warnings.extend(spawn_block(scene, index, world, bodies)?);
+            warnings.extend(placement_warnings(&template, world, bodies, checks));
+            template.spawn(world);
+        } else {
+            absent.push(template);
         }
     }
     let needed = substeps_needed(&substep_input, scene.time.dt);
@@ -43,79 +45,32 @@ pub fn spawn_blocks(
             "the block-block contacts need {needed} sub-steps per step (ten per contact period 2π sqrt(m / k_n)); only {MAX_SUBSTEPS} are taken, so they will likely blow up: lower time.dt or the blocks' normal_stiffness"
         ));
     }
-    Ok(warnings)
+    Ok((warnings, absent))
 }
 
-/// Spawns block `index` of the scene (at the start, or when a stage adds
-/// it). Returns the warnings about it (overlap with a body, a time step
-/// above the contact stability limit).
-pub fn spawn_block(
-    scene: &Scene,
-    index: usize,
-    world: &mut World,
-    bodies: &[Entity],
-) -> Result<Vec<String>, SceneError> {
-    let spec = &scene.blocks[index];
-    let mut warnings = Vec::new();
+/// The components of block `index` of the scene, `spec`.
+fn block_template(spec: &BlockSpec, index: usize) -> Result<BlockTemplate, SceneError> {
     let shape = spec
         .shape
         .build()
         .map_err(|e| invalid(format!("block '{}': {e}", spec.name)))?;
-    let pose = Pose {
-        origin: spec.position,
-        angle: spec.angle.to_radians(),
-    };
     let (motion, mass, velocity) = block_motion(spec)?;
-    let part_count = shape.as_compound().map_or(1, |c| c.shapes().len());
-    for &body in bodies {
-        let Some(points) = world.get::<MaterialPoints>(body) else {
-            continue;
-        };
-        let name = world.get::<BodyName>(body).map_or("", |n| n.0.as_str());
-        warnings.extend(overlap_warning(&spec.name, name, points, &shape, &pose));
-        // Per metre of contact: in axisymmetry both the point's mass and
-        // the spring go with the radius.
-        let geometry = scene.settings.geometry;
-        let lightest = (0..points.len())
-            .map(|p| points.mass[p] / geometry.thickness(points.position[p]))
-            .fold(Real::INFINITY, Real::min);
-        // In `Area` mode the stiffness is per area; the largest slope of the
-        // overlap area, d A / d δ = 2 r at δ = r, makes it a spring.
-        let widest = points.contact_radius.iter().copied().fold(0.0, Real::max);
-        let spring = spec
-            .contact
-            .normal_stiffness
-            .max(spec.contact.tangential_stiffness);
-        let stiffness = match scene.contact.penetration {
-            Penetration::Depth => spring,
-            Penetration::Area => spring * 2.0 * widest,
-        };
-        let limit = 2.0 * (lightest / stiffness).sqrt();
-        if scene.time.dt > limit {
-            warnings.push(format!(
-                "time.dt = {:e} s exceeds the contact stability limit 2 sqrt(m_p / max(k_n, k_t)) = {limit:.4e} s of block '{}' (lightest point {lightest:.4e} kg/m)",
-                scene.time.dt, spec.name
-            ));
-        }
-    }
-    world.spawn((
-        BlockId {
+    Ok(BlockTemplate {
+        id: BlockId {
             name: spec.name.clone(),
             index: index as u32,
         },
-        BlockOutline(spec.shape.outline()),
-        RigidShape(shape),
-        pose,
+        outline: BlockOutline(spec.shape.outline()),
+        shape: RigidShape(shape),
+        pose: Pose {
+            origin: spec.position,
+            angle: spec.angle.to_radians(),
+        },
         velocity,
         motion,
         mass,
-        BlockContactLaw(spec.contact),
-        NeighbourList::default(),
-        BlockContacts::default(),
-        Reaction::default(),
-        PartReactions(vec![DVec2::ZERO; part_count]),
-    ));
-    Ok(warnings)
+        law: BlockContactLaw(spec.contact),
+    })
 }
 
 fn invalid(message: String) -> SceneError {
@@ -161,28 +116,5 @@ fn block_motion(spec: &BlockSpec) -> Result<(RigidMotion, RigidMass, RigidVeloci
             },
             *velocity,
         ),
-    })
-}
-
-/// A warning with the deepest overlap of the body's disks into the block,
-/// if it exceeds [`OVERLAP_WARNING_FRACTION`] of the disk radius.
-fn overlap_warning(
-    block: &str,
-    body: &str,
-    points: &MaterialPoints,
-    shape: &parry2d_f64::shape::SharedShape,
-    pose: &Pose,
-) -> Option<String> {
-    let parry_pose = pose.to_parry();
-    let (depth, radius) = (0..points.len())
-        .filter_map(|p| {
-            let r = points.contact_radius[p];
-            disk_shape_contact(points.position[p], r, &**shape, &parry_pose).map(|c| (c.depth, r))
-        })
-        .fold((0.0, 0.0), |worst, c| if c.0 > worst.0 { c } else { worst });
-    (depth > OVERLAP_WARNING_FRACTION * radius).then(|| {
-        format!(
-            "block '{block}' overlaps body '{body}' by {depth:e} m where it is placed (disk radius {radius:e} m): its contacts push the body away at once"
-        )
     })
 }

@@ -3,11 +3,10 @@
 use super::axisymmetry::axisymmetry_error;
 use super::{
     BodySpec, InitialStress, InitialVelocity, ListedPoint, MAX_SAMPLES, MAX_STEPS, MotionSpec,
-    Scene, SceneError, Shape, SourceLocation, VelocityField,
+    PROBE_PLOT_PREFIX, RUN_FILE_STEMS, Scene, SceneError, Shape, SourceLocation, VelocityField,
 };
 use crate::components::RigidVelocity;
 use crate::contact::ForceApplication;
-use crate::io::output::{PROBE_PLOT_PREFIX, RUN_FILE_STEMS};
 use crate::materials::MaterialModel;
 use crate::math::Real;
 use crate::resources::MAX_CONTACT_BODIES;

@@ -27,18 +27,22 @@
 //! from it.
 
 use crate::components::{
-    BlockContacts, BlockId, DampedEnergy, MaterialPoints, NeighbourList, PartReactions, Pose,
-    Reaction, RigidMotion, RigidVelocity, StepTravel, bodies_in_scene_order,
+    BlockContacts, BlockId, BlockTemplate, DampedEnergy, MaterialPoints, NeighbourList,
+    PartReactions, Pose, Reaction, RigidMotion, RigidVelocity, StepTravel, bodies_in_scene_order,
 };
-use crate::io::kept_state::{Holder, KeptState, StoredState};
-use crate::io::state_hash::StateHasher;
+mod kept_state;
+mod state_hash;
+
+pub use kept_state::{Holder, KeptState, StoredState};
+pub use state_hash::StateHasher;
+
 use crate::math::Real;
 use crate::resources::{
     BlockContactHistory, BlockLog, BodyContacts, BodyPairContact, BodyPairLog, Clock, ContactWork,
     EdgeConditions, EnergyLog, Gravity, Grid, LoadWork, ProbeSample, Probes, Settings,
     StageEndReason, StageLog, StagePlan, StageProgress,
 };
-use crate::scene::{OutputSpec, Scene, SceneError, Shape, spawn_block};
+use crate::scene::{OutputSpec, Scene, SceneError, Shape};
 use bevy_ecs::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
@@ -240,7 +244,7 @@ pub fn write_checkpoint(
     bytes.extend_from_slice(&payload);
     // Named like the outputs' temporary files, so a new run into the
     // folder removes one that a killed run left.
-    let partial = crate::io::manifest::partial_path(path);
+    let partial = crate::files::partial_path(path);
     let write = || -> std::io::Result<()> {
         let mut file = std::fs::File::create(&partial)?;
         file.write_all(&bytes)?;
@@ -410,7 +414,7 @@ fn apply(
     for (entity, points, travel, damped) in state.bodies {
         world.entity_mut(entity).insert((points, travel, damped));
     }
-    restore_blocks(world, scene, state.blocks, bodies)?;
+    restore_blocks(world, scene, state.blocks)?;
     let holders = holders(world);
     user.insert(world, &holders);
     *world.resource_mut::<BlockContactHistory>() = state.block_springs;
@@ -528,12 +532,7 @@ fn holders(world: &mut World) -> Vec<(Holder, Entity)> {
 
 /// Makes the blocks present those of the checkpoint (stages may have added
 /// or removed some), then gives each its stored state.
-fn restore_blocks(
-    world: &mut World,
-    scene: &Scene,
-    blocks: Vec<BlockState>,
-    bodies: &[Entity],
-) -> Result<(), String> {
+fn restore_blocks(world: &mut World, scene: &Scene, blocks: Vec<BlockState>) -> Result<(), String> {
     let present = |world: &mut World| -> Vec<(Entity, u32)> {
         world
             .query::<(Entity, &BlockId)>()
@@ -547,13 +546,22 @@ fn restore_blocks(
         }
     }
     let spawned = present(world);
+    // A block absent now was added by a stage: its template is the plan's.
+    let absent: Vec<BlockTemplate> = world
+        .get_resource::<StagePlan>()
+        .map(|plan| plan.absent_blocks.clone())
+        .unwrap_or_default();
     for block in &blocks {
         let index = block.index as usize;
         if index >= scene.blocks.len() {
             return Err(format!("it has a block {index} the scene does not"));
         }
         if !spawned.iter().any(|(_, i)| *i == block.index) {
-            spawn_block(scene, index, world, bodies).map_err(|e| e.to_string())?;
+            let template = absent
+                .iter()
+                .find(|t| t.id.index == block.index)
+                .ok_or_else(|| format!("it has block {index}, which no stage adds"))?;
+            template.spawn(world);
         }
     }
     let present = present(world);

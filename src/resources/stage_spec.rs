@@ -1,10 +1,10 @@
-//! Stages of a scene: a sequence of loading steps (geostatic settling,
+//! The stages of a scene as it writes them: a sequence of loading steps (geostatic settling,
 //! surcharge, driving a pile...) that each change the setup on entry and
 //! end after a duration or when the model has settled.
 
+use super::{EdgeCondition, EdgeConditions};
 use crate::components::RigidVelocity;
 use crate::math::{DVec2, Real};
-use crate::resources::{EdgeCondition, EdgeConditions};
 use crate::rules;
 use serde::{Deserialize, Deserializer, Serialize};
 
