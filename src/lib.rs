@@ -18,27 +18,29 @@
 //! `systems/` sits beside `src/` (declared here with `#[path]`) so the
 //! schedule is visible at a glance, while staying one crate.
 
-#![warn(missing_docs)]
+#![deny(missing_docs)]
 
+#[doc(hidden)]
 pub mod bench;
 pub mod checkpoint;
 pub mod components;
 pub mod contact;
-pub mod files;
+pub(crate) mod files;
 pub mod geometry;
 pub mod io;
 pub mod materials;
 pub mod math;
-pub mod node_rect;
-pub mod parallel;
+pub(crate) mod node_rect;
+pub(crate) mod parallel;
 pub mod resources;
 pub mod rigid;
-pub mod rules;
+pub(crate) mod rules;
 pub mod runner;
-pub mod scatter;
+pub(crate) mod scatter;
 pub mod scene;
 pub mod shape_functions;
 mod simulation;
+#[doc(hidden)]
 pub mod verify;
 
 #[path = "../systems/mod.rs"]

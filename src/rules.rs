@@ -1,5 +1,5 @@
 //! Range rules for scene values, used twice: while a scene file is parsed
-//! (so the error carries the file position) and by [`super::Scene::validate`]
+//! (so the error carries the file position) and by [`crate::scene::Scene::validate`]
 //! (so scenes built in code are checked by the same rules).
 
 use crate::math::Real;

@@ -108,7 +108,7 @@ fn sample_due(clock: &Clock, probes: &Probes) -> bool {
     clock.step.is_multiple_of(probes.every.max(1)) || clock.step == clock.total_steps()
 }
 
-/// Records probes and energies at the steps [`sample_due`] picks, unless the step
+/// Records probes and energies at the steps `sample_due` picks, unless the step
 /// failed (a broken state is never recorded).
 ///
 /// Reads: `Clock`, `Diagnostics`, `Gravity`, `Settings::geometry`, `MaterialPoints`, `Material`,
@@ -166,7 +166,7 @@ pub fn record_probes_and_energy(
 
 /// Records the contacts of every pair of bodies with a law (resultant,
 /// count, zone half-width, now and in the undeformed bodies) when the
-/// probes are sampled ([`sample_due`]), unless the step failed.
+/// probes are sampled (`sample_due`), unless the step failed.
 ///
 /// Reads: `Clock`, `Diagnostics`, `Probes::every`, `BodyContacts`,
 /// `BodyIndex`, `MaterialPoints::initial_position`. Writes: `BodyPairLog`.
@@ -213,7 +213,7 @@ pub fn record_body_pairs(
 }
 
 /// Records every block's reaction, pose and velocity when the probes are
-/// sampled ([`sample_due`]), blocks in scene order, unless the step failed.
+/// sampled (`sample_due`), blocks in scene order, unless the step failed.
 ///
 /// Reads: `Clock`, `Diagnostics`, `Probes::every`, block components. Writes: `BlockLog`.
 pub fn record_blocks(

@@ -12,7 +12,7 @@ use bevy_ecs::prelude::*;
 pub const ACTIVE_REACH_CELLS: Real = 2.0;
 
 /// Zeroes each layer's active nodes (every other node already holds zero),
-/// then makes active the nodes within [`ACTIVE_REACH_CELLS`] of the body's
+/// then makes active the nodes within `ACTIVE_REACH_CELLS` of the body's
 /// points, where this step's transfers will write (moving the layer's
 /// stored window when they leave it); the members of a contact group all
 /// take the union of their rectangles, as they share their nodes.

@@ -193,7 +193,7 @@ impl MaterialPoints {
     /// change of gravity's potential since the points were placed,
     /// −Σ m g · (x − X), and the inelastic work the materials dissipated
     /// (J/m).
-    /// Points are summed in fixed chunks of [`CHUNK_POINTS`] in parallel and
+    /// Points are summed in fixed chunks of `CHUNK_POINTS` (see the scatter) in parallel and
     /// the chunk sums added in order, so the result never depends on the
     /// thread count.
     /// `chunk_sums` is scratch space, reused so that recording allocates nothing.

@@ -130,14 +130,14 @@ pub struct StencilGrid {
 }
 
 /// The 3 × 3 nodes a point maps to, with the 1D weights and derivatives per
-/// direction. Node (a, b) of the stencil is grid node (base[0] + a, base[1] + b).
+/// direction. Node (a, b) of the stencil is grid node (`base[0] + a`, `base[1] + b`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Stencil {
     /// Grid index of the stencil's lower-left node.
     pub base: [u32; 2],
-    /// Weights along x for nodes base[0] .. base[0] + 2.
+    /// Weights along x for nodes `base[0]` to `base[0] + 2`.
     pub wx: [Real; 3],
-    /// Weights along y for nodes base[1] .. base[1] + 2.
+    /// Weights along y for nodes `base[1]` to `base[1] + 2`.
     pub wy: [Real; 3],
     /// Derivatives of `wx` with respect to the point's x.
     pub gx: [Real; 3],

@@ -447,7 +447,7 @@ fn by_run(values: &[Real]) -> String {
 }
 
 /// The seven runs of [`RUNS`], the four resolutions at the other
-/// [`PLACEMENTS`] ([`placement_study`]), and the same disks by finite
+/// [`PLACEMENTS`] (`placement_study`), and the same disks by finite
 /// elements, a
 /// measured in the undeformed disks (the half-width Hertz's small-strain
 /// law speaks of; the targets are judged on it) and over the
