@@ -4,12 +4,9 @@
 use crate::contact::ContactLaw;
 use crate::materials::{LinearElastic, MaterialModel};
 use crate::math::{DVec2, Real};
-use crate::resources::{EdgeCondition, EdgeConditions, Settings};
+use crate::resources::{EdgeCondition, EdgeConditions};
 use crate::rigid::BlockShape;
-use crate::scene::{
-    BlockSpec, BodySpec, GridSpec, InitialVelocity, MaterialSpec, MotionSpec, OutputSpec, Scene,
-    Shape, TimeSpec,
-};
+use crate::scene::{BlockSpec, BodySpec, GridSpec, MotionSpec, Scene, Shape};
 use crate::simulation::{Simulation, StepError};
 use std::time::Instant;
 
@@ -27,50 +24,22 @@ pub fn elastic_block_scene(points: usize) -> Scene {
     let side_cells = ((points as Real / 4.0).sqrt().round() as usize).max(1);
     let h = 0.01;
     let side = side_cells as Real * h;
-    Scene {
-        name: Some(format!("bench_block_{points}")),
-        grid: GridSpec {
-            origin: DVec2::ZERO,
-            cell_size: h,
-            cells: (side_cells + 4, side_cells + 4),
-            edges: EdgeConditions {
-                bottom: EdgeCondition::Fixed,
-                ..Default::default()
-            },
-        },
-        time: TimeSpec::new(1e-5, 1.0),
-        gravity: DVec2::new(0.0, -9.81),
-        settings: Settings::default(),
-        materials: vec![MaterialSpec {
-            name: "elastic".into(),
-            density: 2000.0,
-            model: MaterialModel::LinearElastic(LinearElastic {
-                youngs_modulus: 1e7,
-                poisson_ratio: 0.3,
-            }),
-        }],
-        bodies: vec![BodySpec {
-            name: "block".into(),
-            material: "elastic".into(),
-            shape: Shape::Rectangle {
-                min: DVec2::new(2.0 * h, 0.0),
-                max: DVec2::new(2.0 * h + side, side),
-            },
-            points_per_cell: 2,
-            velocity: InitialVelocity::default(),
-            initial_stress: None,
-            constraints: Vec::new(),
-            contact_radius: None,
-            acceleration: None,
-            group: None,
-        }],
-        blocks: Vec::new(),
-        contact: Default::default(),
-        probes: Vec::new(),
-        output: OutputSpec::default(),
-        stages: Vec::new(),
-        body_contacts: Vec::new(),
-    }
+    let mut grid = GridSpec::new(DVec2::ZERO, h, (side_cells + 4, side_cells + 4));
+    grid.edges.bottom = EdgeCondition::Fixed;
+    let elastic = MaterialModel::LinearElastic(LinearElastic {
+        youngs_modulus: 1e7,
+        poisson_ratio: 0.3,
+    });
+    let block = Shape::Rectangle {
+        min: DVec2::new(2.0 * h, 0.0),
+        max: DVec2::new(2.0 * h + side, side),
+    };
+    Scene::builder(grid, 1e-5, 1.0)
+        .name(format!("bench_block_{points}"))
+        .material("elastic", 2000.0, elastic)
+        .body(BodySpec::new("block", "elastic", block))
+        .build()
+        .expect("the standard block is a valid scene")
 }
 
 /// The same block resting through DEM contacts on a fixed rigid ground
@@ -88,22 +57,20 @@ pub fn elastic_block_on_ground_scene(points: usize) -> Scene {
         min.y += h;
         max.y += h;
     }
-    scene.blocks.push(BlockSpec {
-        name: "ground".into(),
-        shape: BlockShape::Cuboid {
+    scene.blocks.push(BlockSpec::new(
+        "ground",
+        BlockShape::Cuboid {
             half_extents: DVec2::new(0.5 * width, 0.5 * h),
         },
-        position: DVec2::new(0.5 * width, 0.5 * h),
-        angle: 0.0,
-        motion: MotionSpec::Fixed,
-        contact: ContactLaw {
+        DVec2::new(0.5 * width, 0.5 * h),
+        MotionSpec::Fixed,
+        ContactLaw {
             normal_stiffness: 1e8,
             tangential_stiffness: 1e8,
             friction: 0.5,
             normal_damping: 0.0,
         },
-        present: true,
-    });
+    ));
     scene
 }
 

@@ -8,6 +8,7 @@
 //! radian.
 
 mod axisymmetry;
+mod builder;
 mod contact_stability;
 pub mod input_file;
 mod layout_warnings;
@@ -23,6 +24,7 @@ mod velocity_field;
 pub use crate::resources::{
     BlockVelocity, EdgeChanges, Side, StageEnd, StageSpec, SurfaceTraction,
 };
+pub use builder::SceneBuilder;
 pub use location::SourceLocation;
 pub use point_file::ListedPoint;
 pub use shapes::Shape;
@@ -54,7 +56,8 @@ pub struct Scene {
     /// Gravitational acceleration (m/s²). Default (0, −9.81): Earth, y up.
     #[serde(default = "default_gravity")]
     pub gravity: DVec2,
-    /// Numerical settings. Default: uGIMP, USF, FLIP (β = 0), no damping.
+    /// Numerical settings. Default: uGIMP, USF, FLIP (β = 0), positions
+    /// moved by the remapped velocity, no damping (see [`Settings`]).
     #[serde(default)]
     pub settings: Settings,
     /// Named materials.
