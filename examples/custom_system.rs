@@ -34,7 +34,7 @@ fn report(clock: Res<Clock>, bodies: Query<(&BodyName, &MaterialPoints)>) {
     }
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+pub fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/elastic_column.ron");
     let mut scene = Scene::load(path.as_ref())?;
     // The column's side walls are slip walls: free them so it can sway.
