@@ -5,65 +5,91 @@
 use crate::math::Real;
 use serde::{Deserialize, Deserializer, de::Error};
 
+/// A value outside the range a scene field allows; the message says what
+/// was expected and what was given.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum RuleError {
+    /// Not a finite value > 0.
+    #[error("expected a finite value > 0, got {0}")]
+    NotPositive(Real),
+    /// Not a finite value ≥ 0.
+    #[error("expected a finite value ≥ 0, got {0}")]
+    Negative(Real),
+    /// Poisson's ratio outside (−1, 0.5).
+    #[error("expected Poisson's ratio in (-1, 0.5), got {0}")]
+    PoissonRatio(Real),
+    /// Outside [0, 1].
+    #[error("expected a value in [0, 1], got {0}")]
+    NotFraction(Real),
+    /// Outside (0, 1].
+    #[error("expected a ratio in (0, 1], got {0}")]
+    NotRatio(Real),
+    /// A damping coefficient outside [0, 1].
+    #[error("expected a damping coefficient in [0, 1], got {0}")]
+    NotDamping(Real),
+    /// An XPIC order outside 1 to [`MAX_XPIC_ORDER`].
+    #[error("expected an XPIC order from 1 to {MAX_XPIC_ORDER}, got {0}")]
+    XpicOrder(u32),
+    /// A name that cannot be a file name, and why.
+    #[error("{0}")]
+    FileName(String),
+}
+
 /// A value must be finite and strictly positive.
-pub fn positive(value: Real) -> Result<Real, String> {
+pub fn positive(value: Real) -> Result<Real, RuleError> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(format!("expected a finite value > 0, got {value}"))
+        Err(RuleError::NotPositive(value))
     }
 }
 
 /// A value must be finite and non-negative.
-pub fn non_negative(value: Real) -> Result<Real, String> {
+pub fn non_negative(value: Real) -> Result<Real, RuleError> {
     if value.is_finite() && value >= 0.0 {
         Ok(value)
     } else {
-        Err(format!("expected a finite value ≥ 0, got {value}"))
+        Err(RuleError::Negative(value))
     }
 }
 
 /// Poisson's ratio must lie in (−1, 0.5): 0.5 is incompressible, which
 /// explicit MPM cannot integrate (infinite wave speed).
-pub fn poisson_ratio(value: Real) -> Result<Real, String> {
+pub fn poisson_ratio(value: Real) -> Result<Real, RuleError> {
     if value > -1.0 && value < 0.5 {
         Ok(value)
     } else {
-        Err(format!(
-            "expected Poisson's ratio in (-1, 0.5), got {value}"
-        ))
+        Err(RuleError::PoissonRatio(value))
     }
 }
 
 /// A fraction in [0, 1] (e.g. the PIC fraction β).
-pub fn fraction(value: Real) -> Result<Real, String> {
+pub fn fraction(value: Real) -> Result<Real, RuleError> {
     if (0.0..=1.0).contains(&value) {
         Ok(value)
     } else {
-        Err(format!("expected a value in [0, 1], got {value}"))
+        Err(RuleError::NotFraction(value))
     }
 }
 
 /// A ratio in (0, 1], e.g. of a kinetic energy to its peak: 0 would
 /// never be reached, and above 1 the condition holds at once.
-pub fn ratio(value: Real) -> Result<Real, String> {
+pub fn ratio(value: Real) -> Result<Real, RuleError> {
     if value > 0.0 && value <= 1.0 {
         Ok(value)
     } else {
-        Err(format!("expected a ratio in (0, 1], got {value}"))
+        Err(RuleError::NotRatio(value))
     }
 }
 
 /// A local damping coefficient in [0, 1]. At 1 a force that would speed a
 /// node or point up is cancelled and one that slows it down is doubled, as
 /// the paper's settling stages use it.
-pub fn damping(value: Real) -> Result<Real, String> {
+pub fn damping(value: Real) -> Result<Real, RuleError> {
     if (0.0..=1.0).contains(&value) {
         Ok(value)
     } else {
-        Err(format!(
-            "expected a damping coefficient in [0, 1], got {value}"
-        ))
+        Err(RuleError::NotDamping(value))
     }
 }
 
@@ -73,13 +99,11 @@ pub fn damping(value: Real) -> Result<Real, String> {
 pub const MAX_XPIC_ORDER: u32 = 10;
 
 /// An XPIC order m in [1, MAX_XPIC_ORDER].
-pub fn xpic_order(value: u32) -> Result<u32, String> {
+pub fn xpic_order(value: u32) -> Result<u32, RuleError> {
     if (1..=MAX_XPIC_ORDER).contains(&value) {
         Ok(value)
     } else {
-        Err(format!(
-            "expected an XPIC order from 1 to {MAX_XPIC_ORDER}, got {value}"
-        ))
+        Err(RuleError::XpicOrder(value))
     }
 }
 
@@ -100,30 +124,32 @@ const DEVICE_NAMES: [&str; 22] = [
 /// output folder with `..`, name the folder itself or hide a file), not
 /// ending with `.` or a space, and not a Windows device name (`CON`,
 /// `NUL`, `COM1`, ...).
-pub fn file_name(name: &str) -> Result<(), String> {
+pub fn file_name(name: &str) -> Result<(), RuleError> {
     const WHY: &str = "names become file names";
     let device = name.split('.').next().unwrap_or("").to_ascii_lowercase();
     if name.is_empty() {
-        Err("expected a name, got an empty one".into())
-    } else if name.starts_with('.') {
-        Err(format!(
-            "the name '{name}' starts with '.': {WHY}, and such a file would be hidden or name a folder ('.', '..')"
+        Err(RuleError::FileName(
+            "expected a name, got an empty one".into(),
         ))
+    } else if name.starts_with('.') {
+        Err(RuleError::FileName(format!(
+            "the name '{name}' starts with '.': {WHY}, and such a file would be hidden or name a folder ('.', '..')"
+        )))
     } else if let Some(c) = name
         .chars()
         .find(|c| NOT_IN_FILE_NAMES.contains(c) || c.is_control())
     {
-        Err(format!(
+        Err(RuleError::FileName(format!(
             "the name '{name}' holds {c:?}: {WHY}, which may not hold path separators, any of : * ? \" < > | or control characters"
-        ))
+        )))
     } else if name.ends_with(['.', ' ']) {
-        Err(format!(
+        Err(RuleError::FileName(format!(
             "the name '{name}' ends with '.' or a space: {WHY}, and Windows drops those"
-        ))
+        )))
     } else if DEVICE_NAMES.contains(&device.as_str()) {
-        Err(format!(
+        Err(RuleError::FileName(format!(
             "the name '{name}' is a device on Windows: {WHY}; choose another"
-        ))
+        )))
     } else {
         Ok(())
     }
@@ -147,7 +173,7 @@ pub fn file_safe(name: &str) -> String {
 /// Applies `rule` to an f64 being deserialized.
 fn checked<'de, D: Deserializer<'de>>(
     deserializer: D,
-    rule: fn(Real) -> Result<Real, String>,
+    rule: fn(Real) -> Result<Real, RuleError>,
 ) -> Result<Real, D::Error> {
     rule(Real::deserialize(deserializer)?).map_err(D::Error::custom)
 }

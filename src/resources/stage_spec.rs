@@ -143,7 +143,7 @@ pub enum StageEnd {
 
 impl StageEnd {
     /// Checks the ranges (as parsing does, for stages built in code).
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), rules::RuleError> {
         match *self {
             Self::Duration(d) => rules::positive(d).map(drop),
             Self::KineticEnergyRatio { ratio, max_time } => {
@@ -224,7 +224,7 @@ fn de_optional_damping<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<
 
 fn optional<'de, D: serde::Deserializer<'de>>(
     d: D,
-    rule: fn(Real) -> Result<Real, String>,
+    rule: fn(Real) -> Result<Real, rules::RuleError>,
 ) -> Result<Option<Real>, D::Error> {
     Option::<Real>::deserialize(d)?
         .map(rule)

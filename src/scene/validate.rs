@@ -602,7 +602,7 @@ impl Scene {
                     format!("curve '{}': {message}", curve.name),
                 )
             };
-            rules::file_name(&curve.name).map_err(fail_name)?;
+            rules::file_name(&curve.name).map_err(|e| fail_name(e.to_string()))?;
             // Compared without case: macOS and Windows file systems ignore it.
             let file = curve.name.to_lowercase();
             if !curve_names.insert(file.clone()) {
