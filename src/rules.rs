@@ -30,9 +30,38 @@ pub enum RuleError {
     /// An XPIC order outside 1 to [`MAX_XPIC_ORDER`].
     #[error("expected an XPIC order from 1 to {MAX_XPIC_ORDER}, got {0}")]
     XpicOrder(u32),
+    /// An angle outside [0, 90) degrees.
+    #[error("expected an angle in [0, 90) degrees, got {0}")]
+    Angle(Real),
+    /// A deviatoric eccentricity outside (0.5, 1].
+    #[error("expected a deviatoric eccentricity in (0.5, 1], got {0}")]
+    Eccentricity(Real),
     /// A name that cannot be a file name, and why.
     #[error("{0}")]
     FileName(String),
+}
+
+impl RuleError {
+    /// This error as that of the parameter `field`.
+    pub fn at(self, field: &'static str) -> ParameterError {
+        ParameterError::Range { field, rule: self }
+    }
+}
+
+/// A model's or a law's parameters that a simulation cannot take.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ParameterError {
+    /// A parameter outside its range.
+    #[error("{field}: {rule}")]
+    Range {
+        /// The parameter.
+        field: &'static str,
+        /// Its range, and the value given.
+        rule: RuleError,
+    },
+    /// Parameters in range that do not fit together, and why.
+    #[error("{0}")]
+    Inconsistent(String),
 }
 
 /// A value must be finite and strictly positive.

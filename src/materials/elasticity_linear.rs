@@ -4,7 +4,7 @@
 
 use super::{ConstitutiveModel, PointStep, jaumann_rotation};
 use crate::math::{DMat2, Real, SymTensor};
-use crate::rules::{poisson_ratio, positive};
+use crate::rules::{ParameterError, poisson_ratio, positive};
 use serde::{Deserialize, Serialize};
 
 /// Hooke's law in rate form. Fields are the scene's names.
@@ -21,9 +21,9 @@ pub struct LinearElastic {
 
 impl LinearElastic {
     /// Checks the parameter ranges.
-    pub fn check(&self) -> Result<(), String> {
-        positive(self.youngs_modulus).map_err(|e| format!("youngs_modulus: {e}"))?;
-        poisson_ratio(self.poisson_ratio).map_err(|e| format!("poisson_ratio: {e}"))?;
+    pub fn check(&self) -> Result<(), ParameterError> {
+        positive(self.youngs_modulus).map_err(|e| e.at("youngs_modulus"))?;
+        poisson_ratio(self.poisson_ratio).map_err(|e| e.at("poisson_ratio"))?;
         Ok(())
     }
 

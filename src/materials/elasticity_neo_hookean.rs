@@ -16,7 +16,7 @@
 
 use super::{ConstitutiveModel, LinearElastic, PointStep};
 use crate::math::{DMat2, Real, SymTensor};
-use crate::rules::{poisson_ratio, positive};
+use crate::rules::{ParameterError, poisson_ratio, positive};
 use serde::{Deserialize, Serialize};
 
 /// Parameters of the model (scene `NeoHookean((...))`). The Lamé constants
@@ -34,9 +34,9 @@ pub struct NeoHookean {
 
 impl NeoHookean {
     /// Checks the parameter ranges; the message names the field.
-    pub fn check(&self) -> Result<(), String> {
-        positive(self.youngs_modulus).map_err(|e| format!("youngs_modulus: {e}"))?;
-        poisson_ratio(self.poisson_ratio).map_err(|e| format!("poisson_ratio: {e}"))?;
+    pub fn check(&self) -> Result<(), ParameterError> {
+        positive(self.youngs_modulus).map_err(|e| e.at("youngs_modulus"))?;
+        poisson_ratio(self.poisson_ratio).map_err(|e| e.at("poisson_ratio"))?;
         Ok(())
     }
 

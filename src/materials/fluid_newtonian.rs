@@ -15,7 +15,7 @@
 
 use super::{ConstitutiveModel, PointStep};
 use crate::math::{DMat2, Real, SymTensor};
-use crate::rules::{non_negative, positive};
+use crate::rules::{ParameterError, non_negative, positive};
 use serde::{Deserialize, Serialize};
 
 /// Parameters of the model (scene `NewtonianFluid((...))`).
@@ -46,10 +46,10 @@ fn default_gamma() -> Real {
 
 impl NewtonianFluid {
     /// Checks the parameter ranges; the message names the field.
-    pub fn check(&self) -> Result<(), String> {
-        positive(self.bulk_modulus).map_err(|e| format!("bulk_modulus: {e}"))?;
-        positive(self.gamma).map_err(|e| format!("gamma: {e}"))?;
-        non_negative(self.viscosity).map_err(|e| format!("viscosity: {e}"))?;
+    pub fn check(&self) -> Result<(), ParameterError> {
+        positive(self.bulk_modulus).map_err(|e| e.at("bulk_modulus"))?;
+        positive(self.gamma).map_err(|e| e.at("gamma"))?;
+        non_negative(self.viscosity).map_err(|e| e.at("viscosity"))?;
         Ok(())
     }
 

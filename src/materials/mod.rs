@@ -134,7 +134,7 @@ pub enum MaterialModel {
 
 impl MaterialModel {
     /// Checks the model's parameter ranges.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), crate::rules::ParameterError> {
         match self {
             Self::LinearElastic(m) => m.check(),
             Self::NeoHookean(m) => m.check(),
@@ -274,11 +274,23 @@ mod tests {
              dilation_angle: 40.0))",
         )
         .unwrap();
-        assert!(steep.check().unwrap_err().contains("dilation_angle"));
+        assert!(
+            steep
+                .check()
+                .unwrap_err()
+                .to_string()
+                .contains("dilation_angle")
+        );
         let sticky = MaterialModel::NewtonianFluid(NewtonianFluid {
             viscosity: -1.0,
             ..*f
         });
-        assert!(sticky.check().unwrap_err().contains("viscosity"));
+        assert!(
+            sticky
+                .check()
+                .unwrap_err()
+                .to_string()
+                .contains("viscosity")
+        );
     }
 }

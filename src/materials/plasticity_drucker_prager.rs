@@ -12,7 +12,7 @@
 
 use super::{ElasticPlastic, LinearElastic};
 use crate::math::{Real, SymTensor};
-use crate::rules::{non_negative, poisson_ratio, positive};
+use crate::rules::{ParameterError, non_negative, poisson_ratio, positive};
 use serde::{Deserialize, Serialize};
 
 /// Parameters of the model (scene `DruckerPrager((...))`).
@@ -52,23 +52,23 @@ fn xi(angle: Real) -> Real {
 
 impl DruckerPrager {
     /// Checks the parameter ranges; the message names the field.
-    pub fn check(&self) -> Result<(), String> {
-        positive(self.youngs_modulus).map_err(|e| format!("youngs_modulus: {e}"))?;
-        poisson_ratio(self.poisson_ratio).map_err(|e| format!("poisson_ratio: {e}"))?;
+    pub fn check(&self) -> Result<(), ParameterError> {
+        positive(self.youngs_modulus).map_err(|e| e.at("youngs_modulus"))?;
+        poisson_ratio(self.poisson_ratio).map_err(|e| e.at("poisson_ratio"))?;
         if !(0.0..90.0).contains(&self.friction_angle) {
-            return Err(format!(
+            return Err(ParameterError::Inconsistent(format!(
                 "friction_angle must be in [0, 90) degrees, got {}",
                 self.friction_angle
-            ));
+            )));
         }
         if !(0.0..=self.friction_angle).contains(&self.dilation_angle) {
-            return Err(format!(
+            return Err(ParameterError::Inconsistent(format!(
                 "dilation_angle must be in [0, friction_angle], got {}",
                 self.dilation_angle
-            ));
+            )));
         }
-        non_negative(self.cohesion).map_err(|e| format!("cohesion: {e}"))?;
-        non_negative(self.tension_cutoff).map_err(|e| format!("tension_cutoff: {e}"))?;
+        non_negative(self.cohesion).map_err(|e| e.at("cohesion"))?;
+        non_negative(self.tension_cutoff).map_err(|e| e.at("tension_cutoff"))?;
         Ok(())
     }
 

@@ -51,7 +51,7 @@
 
 use super::{ElasticPlastic, LinearElastic};
 use crate::math::{Real, SymTensor};
-use crate::rules::{non_negative, poisson_ratio, positive};
+use crate::rules::{ParameterError, RuleError, non_negative, poisson_ratio, positive};
 use serde::{Deserialize, Deserializer, Serialize, de::Error};
 use std::f64::consts::{FRAC_PI_3, PI};
 
@@ -104,24 +104,22 @@ fn default_meridional_eccentricity() -> Real {
 }
 
 /// An angle in degrees must lie in [0, 90).
-fn angle(value: Real) -> Result<Real, String> {
+fn angle(value: Real) -> Result<Real, RuleError> {
     if (0.0..90.0).contains(&value) {
         Ok(value)
     } else {
-        Err(format!("expected an angle in [0, 90) degrees, got {value}"))
+        Err(RuleError::Angle(value))
     }
 }
 
 /// The deviatoric eccentricity must lie in (0.5, 1]: 0.5 makes the
 /// potential's section a triangle with sharp corners, above 1 it is not
 /// convex.
-fn eccentricity(value: Real) -> Result<Real, String> {
+fn eccentricity(value: Real) -> Result<Real, RuleError> {
     if value > 0.5 && value <= 1.0 {
         Ok(value)
     } else {
-        Err(format!(
-            "expected a deviatoric eccentricity in (0.5, 1], got {value}"
-        ))
+        Err(RuleError::Eccentricity(value))
     }
 }
 
@@ -158,30 +156,29 @@ type Principal = [Real; 3];
 
 impl MohrCoulomb {
     /// Checks the parameter ranges; the message names the field.
-    pub fn check(&self) -> Result<(), String> {
-        positive(self.youngs_modulus).map_err(|e| format!("youngs_modulus: {e}"))?;
-        poisson_ratio(self.poisson_ratio).map_err(|e| format!("poisson_ratio: {e}"))?;
-        angle(self.friction_angle).map_err(|e| format!("friction_angle: {e}"))?;
+    pub fn check(&self) -> Result<(), ParameterError> {
+        positive(self.youngs_modulus).map_err(|e| e.at("youngs_modulus"))?;
+        poisson_ratio(self.poisson_ratio).map_err(|e| e.at("poisson_ratio"))?;
+        angle(self.friction_angle).map_err(|e| e.at("friction_angle"))?;
         if !(0.0..=self.friction_angle).contains(&self.dilation_angle) {
-            return Err(format!(
+            return Err(ParameterError::Inconsistent(format!(
                 "dilation_angle must be in [0, friction_angle], got {}",
                 self.dilation_angle
-            ));
+            )));
         }
-        non_negative(self.cohesion).map_err(|e| format!("cohesion: {e}"))?;
+        non_negative(self.cohesion).map_err(|e| e.at("cohesion"))?;
         if self.friction_angle == 0.0 && self.cohesion == 0.0 {
             // The pyramid shrinks to the hydrostatic axis, which the return
             // mapping does not handle: it sent every stress to zero and the
             // body collapsed to a line, silently.
-            return Err(
+            return Err(ParameterError::Inconsistent(
                 "friction_angle 0 with cohesion 0 leaves the material no shear strength, which this model cannot return to; give either a value, or use DruckerPrager (a frictionless, cohesionless solid) or NewtonianFluid".into(),
-            );
+            ));
         }
-        non_negative(self.tension_cutoff).map_err(|e| format!("tension_cutoff: {e}"))?;
-        non_negative(self.meridional_eccentricity)
-            .map_err(|e| format!("meridional_eccentricity: {e}"))?;
+        non_negative(self.tension_cutoff).map_err(|e| e.at("tension_cutoff"))?;
+        non_negative(self.meridional_eccentricity).map_err(|e| e.at("meridional_eccentricity"))?;
         if let Some(e) = self.deviatoric_eccentricity {
-            eccentricity(e).map_err(|e| format!("deviatoric_eccentricity: {e}"))?;
+            eccentricity(e).map_err(|e| e.at("deviatoric_eccentricity"))?;
         }
         Ok(())
     }

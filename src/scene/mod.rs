@@ -24,6 +24,7 @@ mod velocity_field;
 pub use crate::resources::{
     BlockVelocity, EdgeChanges, Side, StageEnd, StageSpec, SurfaceTraction,
 };
+pub use crate::rules::{ParameterError, RuleError};
 pub use builder::SceneBuilder;
 pub use location::SourceLocation;
 pub use point_file::ListedPoint;
