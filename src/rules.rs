@@ -27,7 +27,7 @@ pub enum RuleError {
     /// A damping coefficient outside [0, 1].
     #[error("expected a damping coefficient in [0, 1], got {0}")]
     NotDamping(Real),
-    /// An XPIC order outside 1 to [`MAX_XPIC_ORDER`].
+    /// An XPIC order outside 1 to 10.
     #[error("expected an XPIC order from 1 to {MAX_XPIC_ORDER}, got {0}")]
     XpicOrder(u32),
     /// An angle outside [0, 90) degrees.
