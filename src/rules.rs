@@ -59,7 +59,8 @@ pub enum ParameterError {
         /// Its range, and the value given.
         rule: RuleError,
     },
-    /// Parameters in range that do not fit together, and why.
+    /// Parameters that do not fit together, or a value a model refuses, and
+    /// why.
     #[error("{0}")]
     Inconsistent(String),
 }

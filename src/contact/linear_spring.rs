@@ -2,6 +2,7 @@
 //! tangential spring capped by Coulomb friction.
 
 use crate::math::{DVec2, Real};
+use crate::rules::ParameterError;
 use serde::{Deserialize, Serialize};
 
 /// Stiffnesses and friction of a contact (scene `contact`).
@@ -22,19 +23,23 @@ pub struct ContactLaw {
 
 impl ContactLaw {
     /// Checks the ranges; the message names the field.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), ParameterError> {
         let positive = |name: &str, v: Real| {
             if v.is_finite() && v > 0.0 {
                 Ok(())
             } else {
-                Err(format!("{name} must be > 0, got {v}"))
+                Err(ParameterError::Inconsistent(format!(
+                    "{name} must be > 0, got {v}"
+                )))
             }
         };
         let non_negative = |name: &str, v: Real| {
             if v.is_finite() && v >= 0.0 {
                 Ok(())
             } else {
-                Err(format!("{name} must be ≥ 0, got {v}"))
+                Err(ParameterError::Inconsistent(format!(
+                    "{name} must be ≥ 0, got {v}"
+                )))
             }
         };
         positive("normal_stiffness", self.normal_stiffness)?;

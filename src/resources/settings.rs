@@ -2,7 +2,7 @@
 
 use crate::geometry::Geometry;
 use crate::math::{DVec2, Real};
-use crate::rules::{damping, fraction, xpic_order};
+use crate::rules::{ParameterError, damping, fraction, xpic_order};
 use crate::shape_functions::ShapeFunction;
 use bevy_ecs::prelude::Resource;
 use serde::{Deserialize, Serialize};
@@ -154,29 +154,29 @@ impl Settings {
     }
 
     /// Checks the ranges; the message names the field and the allowed range.
-    pub fn check(&self) -> Result<(), String> {
-        fraction(self.pic_fraction).map_err(|e| format!("pic_fraction: {e}"))?;
-        damping(self.grid_damping).map_err(|e| format!("grid_damping: {e}"))?;
-        damping(self.particle_damping).map_err(|e| format!("particle_damping: {e}"))?;
+    pub fn check(&self) -> Result<(), ParameterError> {
+        fraction(self.pic_fraction).map_err(|e| e.at("pic_fraction"))?;
+        damping(self.grid_damping).map_err(|e| e.at("grid_damping"))?;
+        damping(self.particle_damping).map_err(|e| e.at("particle_damping"))?;
         if self.affine_transfer && self.shape_function == ShapeFunction::Linear {
             // Seen by a tester: the dam break and a Drucker–Prager column
             // collapse invert a point within 240 and 5 000 steps, while uGIMP
             // and the B-spline run the same scenes through.
-            return Err(
+            return Err(ParameterError::Inconsistent(
                 "affine_transfer: with the Linear kernel the affine velocity inverts points in ordinary flows; use UGimp or QuadraticBSpline".into(),
-            );
+            ));
         }
         if let Some(m) = self.xpic_order {
-            xpic_order(m).map_err(|e| format!("xpic_order: {e}"))?;
+            xpic_order(m).map_err(|e| e.at("xpic_order"))?;
             if self.affine_transfer {
-                return Err(
+                return Err(ParameterError::Inconsistent(
                     "affine_transfer: XPIC's smoothing maps the point velocities without their gradients; use one or the other".into(),
-                );
+                ));
             }
             if let Some(update) = self.position_update {
-                return Err(format!(
+                return Err(ParameterError::Inconsistent(format!(
                     "position_update: {update:?} is a choice of eq. 11 (the FLIP/PIC update); XPIC moves the points its own way (eq. 12b): leave position_update out"
-                ));
+                )));
             }
         }
         Ok(())
@@ -204,7 +204,7 @@ mod tests {
             PositionUpdate::NewGridVelocity,
             PositionUpdate::RemappedVelocity,
         ] {
-            let message = xpic(Some(other)).check().expect_err("refused");
+            let message = xpic(Some(other)).check().expect_err("refused").to_string();
             assert!(
                 message.contains(&format!("{other:?} is a choice of eq. 11")),
                 "{message}"
@@ -219,7 +219,7 @@ mod tests {
             affine_transfer: true,
             ..Settings::default()
         };
-        let message = settings.check().expect_err("refused");
+        let message = settings.check().expect_err("refused").to_string();
         assert!(message.starts_with("affine_transfer:"), "{message}");
     }
 }
