@@ -159,9 +159,9 @@ impl Settings {
         damping(self.grid_damping).map_err(|e| e.at("grid_damping"))?;
         damping(self.particle_damping).map_err(|e| e.at("particle_damping"))?;
         if self.affine_transfer && self.shape_function == ShapeFunction::Linear {
-            // Seen by a tester: the dam break and a Drucker–Prager column
-            // collapse invert a point within 240 and 5 000 steps, while uGIMP
-            // and the B-spline run the same scenes through.
+            // The dam break and a Drucker–Prager column collapse invert a
+            // point within 240 and 5 000 steps, while uGIMP and the
+            // B-spline run the same scenes through.
             return Err(ParameterError::Inconsistent(
                 "affine_transfer: with the Linear kernel the affine velocity inverts points in ordinary flows; use UGimp or QuadraticBSpline".into(),
             ));

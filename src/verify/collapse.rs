@@ -1,6 +1,6 @@
-//! The granular column collapse of issue 4 (aspect ratio H/L = 0.5,
+//! The granular column collapse (aspect ratio H/L = 0.5,
 //! Drucker–Prager sand on a rough floor): run-out and final height against
-//! the published laws. The issue asks for the comparison, not a target, so
+//! the published laws: a comparison, not a target, so
 //! the checks are reported without a verdict.
 
 use super::{Check, Context, VerifyError, body, largest};

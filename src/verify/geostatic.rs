@@ -1,4 +1,4 @@
-//! The geostatic check of issue 4 (paper section 4.3's loading procedure):
+//! The geostatic check (the loading procedure of the paper's section 4.3):
 //! an elastic soil column settled under gravity, then under a 150 kPa
 //! surcharge, against σ_v = ρ g z and σ_h = K0 σ_v.
 
@@ -70,7 +70,7 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
         !sim.world().resource::<StageLog>().records.is_empty()
     })?;
     let mut checks = Vec::new();
-    // The issue's targets: σ_v within 3%, σ_h / σ_v close to K0 (held to 1%).
+    // The targets: σ_v within 3%, σ_h / σ_v close to K0 (held to 1%).
     let mut judge = |stage: &str, reference: &str, base: Real, expected: Real, k0_error: Real| {
         let error = base / expected - 1.0;
         checks.push(Check::judged(
@@ -97,7 +97,7 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
         geostatic - SURCHARGE,
         k0_error,
     );
-    // The issue's 3% at every depth, the surface included.
+    // The validation's 3% at every depth, the surface included.
     let row_error = worst_row_error(&mut sim, SURCHARGE)?;
     checks.push(Check::judged(
         "150 kPa surcharge: every row of points' mean σ_v against ρ g z + 150 kPa at its initial depth",

@@ -1,7 +1,7 @@
 //! Paper section 4.4.2, the 2D Hertz problem: two elastic disks pressed
 //! together by opposite ramped body forces, on separate layers, meeting only
 //! through the disk–disk DEM contact; F(a) against F = π E* a² / (4 R*),
-//! as the issue asks, and against the same disks of the same law by finite
+//! as the validation asks, and against the same disks of the same law by finite
 //! elements ([`super::elastic_disk`]), which show how far the continuum
 //! itself is from Hertz at the window's contact sizes. The half-width a is
 //! measured in the undeformed disks, as small-strain theory has it, and
@@ -305,7 +305,7 @@ pub fn load_to_the_end(
     })
 }
 
-/// The issue's four resolutions (cell R/20 and R/40; 1 and 2 × 2 points per
+/// The validation's four resolutions (cell R/20 and R/40; 1 and 2 × 2 points per
 /// cell: [`COARSEST`], two middle ones, [`FINEST`]) and the finest turned
 /// 45° ([`TURNED`]), then two controls, reported only: the finest point
 /// spacing (R/80) on cells twice as fine with one point per cell, and the
@@ -326,7 +326,7 @@ pub const RUNS: [Resolution; 7] = [
 ];
 
 /// The placements of the disks on the lattice sampled for each of the
-/// issue's four resolutions, as (shift along the contact in point
+/// four resolutions, as (shift along the contact in point
 /// spacings, weight): the scene's, a quarter and half a spacing over. A
 /// shift of ¾ mirrors that of ¼ about the line of centres, hence its
 /// weight 2; a whole spacing gives the scene's lattice again.
@@ -418,7 +418,7 @@ fn describe(curve: &LoadingCurve) -> String {
     )
 }
 
-/// Whether `errors` fall at each refinement of the issue's four
+/// Whether `errors` fall at each refinement of the validation's four
 /// resolutions: from the coarsest through both middle runs (finer points,
 /// finer cells) to the finest, and the four as "c → m1 and m2 → f". A NaN
 /// error (no samples) fails every comparison.
@@ -450,7 +450,7 @@ fn by_run(values: &[Real]) -> String {
 /// [`PLACEMENTS`] (`placement_study`), and the same disks by finite
 /// elements, a
 /// measured in the undeformed disks (the half-width Hertz's small-strain
-/// law speaks of; the issue's targets are judged on it) and over the
+/// law speaks of; the targets are judged on it) and over the
 /// current positions (reported), and F(a) plotted to
 /// `OUT/hertz_disks/f_of_a.png`.
 pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
@@ -479,7 +479,7 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
         let quantity = format!("{}: mean |F/F_Hertz(a) − 1|, a 0.2–0.3 R", run.label());
         let enough = *count >= MIN_SAMPLES;
         checks.push(if k == FINEST {
-            // The issue's target at the finest resolution.
+            // The target at the finest resolution.
             Check::judged(
                 quantity,
                 describe(curve),
@@ -497,7 +497,7 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
             Check::reported(quantity, describe(curve), "control")
         });
     }
-    // The issue's target: the error against Hertz falls with resolution.
+    // The target: the error against Hertz falls with resolution.
     let (falls, trend) = falls_with_resolution(&errors.iter().map(|e| e.0).collect::<Vec<_>>());
     checks.push(Check::judged(
         "the error falls with resolution: R/20 1 pt → both R/20 4 pt and R/40 1 pt → R/40 4 pt",
@@ -620,7 +620,7 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
     Ok(checks)
 }
 
-/// The issue's four resolutions at the other [`PLACEMENTS`] of the disks
+/// The validation's four resolutions at the other [`PLACEMENTS`] of the disks
 /// on the lattice (reported): each resolution's error at every placement
 /// and their weighted mean, and whether those means fall with resolution.
 /// `errors` are the runs of [`RUNS`] (the scene's placement).

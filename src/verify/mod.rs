@@ -1,5 +1,5 @@
 //! The paper's validation cases at full size, each measured against its
-//! target (an analytical solution, published data or an issue's target):
+//! target (an analytical solution, published data or a reference computation):
 //! what `mpdem verify` runs and tabulates, and what the tests and the long
 //! (`--ignored`) tests assert.
 //!
@@ -38,7 +38,7 @@ pub enum Verdict {
     /// The measured value misses the target.
     Missed,
     /// Compared with published data, no target to meet (e.g. the column
-    /// collapse's run-out, which the issue asks to report and compare).
+    /// collapse's run-out, which the validation asks to report and compare).
     Reported,
 }
 
@@ -101,7 +101,7 @@ impl Check {
 pub struct Case {
     /// Name on the command line (`mpdem verify NAME`).
     pub name: &'static str,
-    /// Where it comes from: the paper's section, or the issue that set it.
+    /// Where it comes from: the paper's section, or the published source.
     pub source: &'static str,
     /// One line on what it is.
     pub about: &'static str,
@@ -136,7 +136,7 @@ pub const CASES: &[Case] = &[
     },
     Case {
         name: "geostatic_column",
-        source: "issue 4, item 6",
+        source: "paper 4.3, geostatic stage",
         about: "geostatic stage then a 150 kPa surcharge: σ_v and K0",
         minutes: 0.1,
         run: geostatic::run,
@@ -178,7 +178,7 @@ pub const CASES: &[Case] = &[
     },
     Case {
         name: "column_collapse",
-        source: "issue 4, item 7",
+        source: "Lube et al. 2005",
         about: "granular column collapse, H/L = 0.5: run-out and final height",
         minutes: 20.0,
         run: collapse::run,

@@ -95,7 +95,7 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
 /// The same pile as a body of revolution (`pile_penetration_axisymmetric`,
 /// about 4.5 minutes on 2 cores), the geometry of Susila and Hryciw's finite
 /// elements: q_c = 2 f_c / R² is compared with their plateau, reported (the
-/// issue's target is the paper's plane-strain scene's).
+/// judged target is the paper's plane-strain scene's).
 pub fn run_axisymmetric(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
     let name = "pile_penetration_axisymmetric";
     let (plateau, mut checks) = measure(ctx, name, "mpdem, axisymmetric")?;

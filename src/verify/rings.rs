@@ -81,7 +81,7 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
             format!("< 1.25 × {:.0} mm", 1e3 * OUTER_RADIUS),
             farthest < 1.25 * OUTER_RADIUS,
         ),
-        // The target (measured −1.58%, of which 2.34% taken by
+        // The target (measured −1.58%, of which 2.34% taken by
         // friction; −7.58% with disks that only reach the outline).
         Check::judged(
             "drift of kinetic + strain + contact energy over the run",

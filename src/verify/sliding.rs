@@ -28,7 +28,7 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
     let (u, v) = centre_of_mass_motion(body(&mut sim, "block")?);
     let (s_exact, v_exact) = (0.5 * a * t * t, a * t);
     let (s_error, v_error) = (u.x / s_exact - 1.0, v.x / v_exact - 1.0);
-    // The targets: 2% on both (no over-damping).
+    // The targets: 2% on both (no over-damping).
     Ok(vec![
         Check::judged(
             format!("centre of mass travel at {t} s against ½ a t² = {s_exact:.4} m"),

@@ -4,7 +4,7 @@
 //! explicit finite elements (`elastic_block`), a reference independent of
 //! the material point method. Reported against the exact motion of a rigid
 //! block rocking on its downhill corner: with r = 0 the sharp-corner
-//! pendulum of the issue, φ'' = (3g/(4L)) sin φ, and with the corner rounded
+//! pendulum, φ'' = (3g/(4L)) sin φ, and with the corner rounded
 //! to the disk radius r the outline the disks give the block. The scenes'
 //! block is far from rigid for this motion: its first bending period as a
 //! clamped beam (Euler–Bernoulli, about 55 ms) is a third of the rocking's

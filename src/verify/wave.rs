@@ -62,7 +62,7 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
     let fine = midpoint_error(&ctx.run("wave_1d, 200 cells", &scene)?, 1.0)?;
     let coarse = midpoint_error(&ctx.run("wave_1d, 100 cells", &scaled(scene, 2.0))?, 1.0)?;
     Ok(vec![
-        // The target: 2% of 0.25 over five periods. Measured 1.85%;
+        // The target: 2% of 0.25 over five periods. Measured 1.85%;
         // the floor is the finite-strain response (strains of 2.5%) against
         // the linear exact solution, see scenes/wave_1d.ron.
         Check::judged(
