@@ -61,10 +61,12 @@ enum Command {
         #[arg(long)]
         overwrite: bool,
     },
-    /// Validate a scene without running it.
+    /// Validate scenes without running them (each is checked; the status
+    /// is 1 if any is refused).
     Check {
-        /// The RON scene file.
-        scene: PathBuf,
+        /// The RON scene files.
+        #[arg(required = true)]
+        scenes: Vec<PathBuf>,
     },
     /// Measure particle-updates per second on the standard elastic block, without and with a rigid ground contact.
     Bench {
@@ -139,7 +141,7 @@ fn main() -> ExitCode {
             };
             run(&scene, request)
         }),
-        Command::Check { scene } => check(&scene).map_err(Failure::Error),
+        Command::Check { scenes } => check_all(&scenes).map_err(Failure::Error),
         Command::Bench {
             points,
             steps,
@@ -241,6 +243,26 @@ fn with_threads<E: From<String> + Send>(
         })
         .map_err(E::from)?
         .install(f)
+}
+
+/// Checks every scene, reporting each; an error if any is refused (the
+/// last refusal's message, the others printed as they come).
+fn check_all(paths: &[PathBuf]) -> Result<(), String> {
+    let mut refused = Vec::new();
+    for path in paths {
+        if let Err(message) = check(path) {
+            refused.push(message);
+        }
+    }
+    match refused.pop() {
+        None => Ok(()),
+        Some(last) => {
+            for message in refused {
+                say_err(&format!("error: {message}"));
+            }
+            Err(last)
+        }
+    }
 }
 
 fn check(path: &Path) -> Result<(), String> {

@@ -97,6 +97,30 @@ fn check_accepts_every_shipped_scene() {
         String::from_utf8_lossy(&missing.stderr)
             .contains("no/such/scene.ron: cannot read the scene")
     );
+    // Several at once (`mpdem check scenes/*.ron`): each reported, status 1
+    // if any is refused.
+    let (wave, column) = (
+        common::scene_path("wave_1d.ron"),
+        common::scene_path("elastic_column.ron"),
+    );
+    let (wave, column) = (wave.to_str().unwrap(), column.to_str().unwrap());
+    let both = mpdem(&["check", wave, column]);
+    assert!(both.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&both.stdout)
+            .matches(": ok")
+            .count(),
+        2
+    );
+    let one_bad = mpdem(&["check", wave, "no/such/scene.ron", column]);
+    assert_eq!(one_bad.status.code(), Some(1));
+    assert_eq!(
+        String::from_utf8_lossy(&one_bad.stdout)
+            .matches(": ok")
+            .count(),
+        2
+    );
+    assert!(String::from_utf8_lossy(&one_bad.stderr).contains("no/such/scene.ron"));
 }
 
 #[test]
