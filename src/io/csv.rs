@@ -17,6 +17,21 @@ fn field(name: &str) -> Cow<'_, str> {
     }
 }
 
+/// A time (s) as the series write it: to 12 significant digits, with
+/// trailing zeros dropped, so that the time of step n, n Δt in floating
+/// point, reads `1e-5` rather than `9.999999999999999e-6`. (The other
+/// columns keep every digit.)
+fn time(t: Real) -> String {
+    let written = format!("{t:.11e}");
+    match written.split_once('e') {
+        Some((mantissa, exponent)) => {
+            let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+            format!("{mantissa}e{exponent}")
+        }
+        None => written,
+    }
+}
+
 /// A record the outputs write as CSV, one row per sample: written whole
 /// ([`write_series`]) or appended to as the run records it
 /// ([`crate::io::RunOutput`]).
@@ -61,8 +76,8 @@ impl CsvSeries for Probes {
         let [sxx, syy, sxy, szz] = s.stress.to_array();
         writeln!(
             out,
-            "{name},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{sxx:e},{syy:e},{sxy:e},{szz:e}",
-            s.time,
+            "{name},{},{:e},{:e},{:e},{:e},{:e},{:e},{sxx:e},{syy:e},{sxy:e},{szz:e}",
+            time(s.time),
             s.position.x,
             s.position.y,
             s.displacement.x,
@@ -93,19 +108,20 @@ impl CsvSeries for EnergyLog {
         let s = &self.samples[k];
         writeln!(
             out,
-            "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
-            s.time,
-            s.kinetic,
-            s.strain,
-            s.contact,
-            s.total(),
-            s.gravity,
-            s.inelastic,
-            s.loads,
-            s.blocks,
-            s.dissipated,
-            s.damped,
-            s.balance()
+            "{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+            time(s.time),
+            // + 0.0 writes a minus zero (a work negated) as 0.
+            s.kinetic + 0.0,
+            s.strain + 0.0,
+            s.contact + 0.0,
+            s.total() + 0.0,
+            s.gravity + 0.0,
+            s.inelastic + 0.0,
+            s.loads + 0.0,
+            s.blocks + 0.0,
+            s.dissipated + 0.0,
+            s.damped + 0.0,
+            s.balance() + 0.0
         )
     }
 }
@@ -129,8 +145,8 @@ impl CsvSeries for BodyPairLog {
         let p = &s.summary;
         writeln!(
             out,
-            "{:e},{},{},{:e},{:e},{},{:e},{:e},{:e}",
-            s.time,
+            "{},{},{},{:e},{:e},{},{:e},{:e},{:e}",
+            time(s.time),
             name(s.a),
             name(s.b),
             p.force.x,
@@ -148,7 +164,7 @@ pub fn write_curve(path: &Path, rows: &[(Real, Real, Real)]) -> std::io::Result<
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     writeln!(out, "time,displacement,resistance")?;
     for (t, d, f) in rows {
-        writeln!(out, "{t:e},{d:e},{f:e}")?;
+        writeln!(out, "{},{d:e},{f:e}", time(*t))?;
     }
     out.flush()
 }
@@ -167,11 +183,11 @@ impl CsvSeries for StageLog {
         let r = &self.records[k];
         writeln!(
             out,
-            "{},{},{:e},{:e},{},{}",
+            "{},{},{},{},{},{}",
             r.index,
             field(&r.name),
-            r.start,
-            r.end,
+            time(r.start),
+            time(r.end),
             r.steps,
             r.reason.label()
         )
@@ -193,8 +209,8 @@ impl CsvSeries for BlockLog {
         let name = field(self.names.get(s.block as usize).map_or("?", String::as_str));
         writeln!(
             out,
-            "{name},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
-            s.time,
+            "{name},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+            time(s.time),
             s.force.x,
             s.force.y,
             s.torque,
@@ -210,6 +226,14 @@ impl CsvSeries for BlockLog {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn times_keep_twelve_digits_and_drop_trailing_zeros() {
+        assert_eq!(super::time(100.0 * 1e-7), "1e-5");
+        assert_eq!(super::time(0.0), "0e0");
+        assert_eq!(super::time(1.5), "1.5e0");
+        assert_eq!(super::time(0.123456789012345), "1.23456789012e-1");
+    }
+
     #[test]
     fn names_with_commas_or_quotes_stay_one_field() {
         assert_eq!(super::field("top"), "top");
