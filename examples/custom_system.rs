@@ -1,11 +1,12 @@
-//! Adding a user system to the step: a horizontal "wind" load that grows
-//! with time, applied to every point of the elastic column in the
-//! `Boundary` set (before the particle-to-grid transfer picks up external
-//! forces), and a report in `Last`.
+//! Adding user systems to the step, as a plugin: a horizontal "wind" load
+//! that grows with time, applied to every point of the elastic column in
+//! the `Boundary` set (before the particle-to-grid transfer picks up
+//! external forces), and a report in `Last`.
 //!
 //! Run with `cargo run --release --example custom_system`.
 
 use mpdem::prelude::*;
+use mpdem::resources::UpdateScheme;
 
 /// Wind pressure growth rate, N per metre of thickness per point per second.
 const WIND_RATE: Real = 0.5;
@@ -34,6 +35,18 @@ fn report(clock: Res<Clock>, bodies: Query<(&BodyName, &MaterialPoints)>) {
     }
 }
 
+/// The wind and its report, as one feature of the step.
+struct WindPlugin;
+
+impl MpmPlugin for WindPlugin {
+    fn add_systems(&self, schedule: &mut Schedule, _: UpdateScheme) {
+        schedule.add_systems((
+            wind.in_set(MpmSystems::Boundary),
+            report.in_set(MpmSystems::Last),
+        ));
+    }
+}
+
 pub fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/elastic_column.ron");
     let mut scene = Scene::load(path.as_ref())?;
@@ -44,8 +57,7 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
     scene.grid.cells.0 = 48;
     scene.time.end = 0.5;
     let mut sim = Simulation::from_scene(&scene)?;
-    sim.add_systems(wind.in_set(MpmSystems::Boundary))?;
-    sim.add_systems(report.in_set(MpmSystems::Last))?;
+    sim.add_plugin(&WindPlugin)?;
     sim.run()?;
     println!("state hash {:016x}", sim.state_hash());
     Ok(())

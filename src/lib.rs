@@ -54,7 +54,7 @@ pub mod prelude {
     pub use crate::math::{DMat2, DVec2, Real, SymTensor};
     pub use crate::resources::{Clock, Gravity, Grid, Probes, Settings};
     pub use crate::scene::Scene;
-    pub use crate::systems::{MpmSchedule, MpmSystems};
+    pub use crate::systems::{MpmPlugin, MpmSchedule, MpmSystems};
     pub use crate::{Simulation, StepError};
     pub use bevy_ecs::prelude::*;
 }

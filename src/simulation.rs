@@ -180,6 +180,15 @@ impl Simulation {
         self.initialize_schedule()
     }
 
+    /// Adds a plugin's systems to the step (see
+    /// [`crate::systems::MpmPlugin`]); like [`Simulation::add_systems`], an
+    /// ambiguous addition is reported here.
+    pub fn add_plugin(&mut self, plugin: &dyn crate::systems::MpmPlugin) -> Result<(), StepError> {
+        let scheme = self.world.resource::<crate::resources::Settings>().scheme;
+        plugin.add_systems(&mut self.schedule, scheme);
+        self.initialize_schedule()
+    }
+
     fn initialize_schedule(&mut self) -> Result<(), StepError> {
         match self.schedule.initialize(&mut self.world) {
             Ok(_) => Ok(()),
