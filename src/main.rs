@@ -245,8 +245,9 @@ fn with_threads<E: From<String> + Send>(
         .install(f)
 }
 
-/// Checks every scene, reporting each; an error if any is refused (the
-/// last refusal's message, the others printed as they come).
+/// Checks every scene, reporting each accepted one as it comes; an error
+/// if any is refused (the last refusal's message, the others printed
+/// before it).
 fn check_all(paths: &[PathBuf]) -> Result<(), String> {
     let mut refused = Vec::new();
     for path in paths {
@@ -324,6 +325,8 @@ fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
     );
     let log_lines = !request.quiet && !std::io::stderr().is_terminal();
     let mut last_line: Option<Instant> = None;
+    // The latest report not yet logged, logged when the run ends.
+    let mut unlogged: Option<String> = None;
     let result = runner.run(&stop, |p| {
         let stage = p.stage.map_or(String::new(), |s| format!(", stage '{s}'"));
         let of = match p.stage {
@@ -334,17 +337,24 @@ fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
         bar.set_length(p.length);
         bar.set_position(p.step);
         bar.set_message(message.clone());
+        let line = format!(
+            "{message}, elapsed {}, ETA {}",
+            clock_time(p.elapsed),
+            eta(p).map_or("-".into(), clock_time)
+        );
         let due = last_line.is_none_or(|t| t.elapsed() >= LOG_PROGRESS_EVERY);
         if log_lines && (due || p.step >= p.length) {
             last_line = Some(Instant::now());
-            say_err(&format!(
-                "{message}, elapsed {}, ETA {}",
-                clock_time(p.elapsed),
-                eta(p).map_or("-".into(), clock_time)
-            ));
+            say_err(&line);
+            unlogged = None;
+        } else {
+            unlogged = Some(line);
         }
     });
     bar.finish_and_clear();
+    if let Some(line) = unlogged.filter(|_| log_lines) {
+        say_err(&line);
+    }
     for notice in runner.notices() {
         say_err(notice);
     }

@@ -126,6 +126,9 @@ pub enum RunError {
     /// Writing the results failed.
     #[error("cannot write the output: {0}")]
     Output(std::io::Error),
+    /// [`Runner::run`] was called a second time.
+    #[error("this runner has run: build a new one (with Start::Resume to carry the run on)")]
+    RanAlready,
     /// A step failed (a numerical breakdown, an output that could not be
     /// written mid-run); the results up to it are written.
     #[error("{message}\nresults up to the failure are in {}", dir.display())]
@@ -200,6 +203,8 @@ pub struct Runner {
     options: RunOptions,
     sim: Simulation,
     notices: Vec<String>,
+    /// Whether `run` was called: a runner runs once.
+    ran: bool,
 }
 
 impl Runner {
@@ -229,7 +234,11 @@ impl Runner {
             }
             _ => {}
         }
-        let source = source.map(|path| std::path::absolute(path).unwrap_or(path.to_path_buf()));
+        let source = source.map(|path| {
+            std::fs::canonicalize(path)
+                .or_else(|_| std::path::absolute(path))
+                .unwrap_or(path.to_path_buf())
+        });
         if options.start != Start::Resume
             && !options.replace_other_scene
             && let Some(ours) = &source
@@ -249,6 +258,7 @@ impl Runner {
             options,
             sim,
             notices: Vec::new(),
+            ran: false,
         })
     }
 
@@ -288,6 +298,9 @@ impl Runner {
         stop: &AtomicBool,
         mut progress: impl FnMut(&Progress),
     ) -> Result<RunSummary, RunError> {
+        if std::mem::replace(&mut self.ran, true) {
+            return Err(RunError::RanAlready);
+        }
         let started = Instant::now();
         let dir = self.options.out.clone();
         let checkpoint = dir.join(CHECKPOINT_FILE);
@@ -345,6 +358,11 @@ impl Runner {
                 .iter()
                 .map(|w| format!("warning: {w}")),
         );
+        // A stopped run's checkpoint first: it matters more than the plots.
+        let now = sim.clock();
+        let stopped = failure.is_none() && !now.finished();
+        let stop_checkpoint = (stopped && checkpoint_steps.is_some())
+            .then(|| sim.write_checkpoint(&checkpoint).map_err(|e| e.to_string()));
         if let Err(e) = output.finish(sim, failure.is_some()) {
             let written = format!("cannot write the output: {e}");
             let message = match failure {
@@ -356,15 +374,12 @@ impl Runner {
         if let Some(message) = failure {
             return Err(RunError::Failed { message, dir });
         }
-        let now = sim.clock();
-        if !now.finished() {
-            let checkpoint = checkpoint_steps
-                .map(|_| sim.write_checkpoint(&checkpoint).map_err(|e| e.to_string()));
+        if stopped {
             return Err(RunError::Stopped {
                 step: now.step,
                 time: now.time,
                 dir,
-                checkpoint,
+                checkpoint: stop_checkpoint,
             });
         }
         Ok(RunSummary {
@@ -386,6 +401,7 @@ impl Runner {
             options,
             sim,
             notices,
+            ..
         } = self;
         let dir = &options.out;
         match options.start {
@@ -418,12 +434,13 @@ impl Runner {
                 Ok(output)
             }
             Start::Fresh | Start::Restart => {
+                // The checkpoint goes only once the new run's folder is open.
+                let (output, removed) = RunOutput::create(dir, scene, source.as_deref(), sim)
+                    .map_err(RunError::Output)?;
                 if options.start == Start::Restart && checkpoint.exists() {
                     std::fs::remove_file(checkpoint)
                         .map_err(|e| RunError::Output(crate::files::located(checkpoint, e)))?;
                 }
-                let (output, removed) = RunOutput::create(dir, scene, source.as_deref(), sim)
-                    .map_err(RunError::Output)?;
                 if removed > 0 {
                     notices.push(format!(
                         "removed the {removed} files an earlier run wrote into {} (listed in its outputs.txt)",

@@ -234,7 +234,79 @@ fn runaway_input_is_refused_with_its_size() {
         .env("MPDEM_MAX_INPUT_BYTES", "100")
         .output()
         .expect("mpdem runs");
-    assert_eq!(result.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("larger than the 100 bytes an input file may have (MPDEM_MAX_INPUT_BYTES"),
+        "{stderr}"
+    );
+    // Every step sampled over 10^7 steps: 10^7 rows of energies and as
+    // many of the probe, more than a run keeps.
+    let (rows_base, rows) = common::write_edited(
+        "wave_1d.ron",
+        "rows",
+        "rows.ron",
+        &[
+            ("dt: 1e-4, end: 1.0", "dt: 1e-7, end: 1.0"),
+            ("probe_interval: Some(1e-4)", "probe_interval: Some(1e-7)"),
+        ],
+    );
+    let result = mpdem()
+        .args(["check"])
+        .arg(&rows)
+        .output()
+        .expect("mpdem runs");
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("1.000e7 samples of 2 records")
+            && stderr.contains("more than the 10000000 a run keeps"),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(&rows_base).ok();
     std::fs::remove_dir_all(&base).ok();
     std::fs::remove_dir_all(&allowed_base).ok();
+}
+
+#[test]
+fn a_restart_that_cannot_open_the_folder_keeps_the_checkpoint() {
+    let (base, scene) = common::edited_wave_scene("restart-kept", "end: 1.0", "end: 0.02");
+    let out = base.join("out");
+    let run = |extra: &[&str]| {
+        mpdem()
+            .args(["run", scene.to_str().unwrap(), "--quiet", "--out"])
+            .arg(&out)
+            .args(extra)
+            .output()
+            .expect("mpdem runs")
+    };
+    assert!(run(&["--checkpoint-every", "0.01"]).status.success());
+    let checkpoint = std::fs::read(out.join("checkpoint.bin")).unwrap();
+    // A list of outputs that is not mpdem's: the new run refuses the folder.
+    std::fs::write(out.join("outputs.txt"), "a user's notes").unwrap();
+    let result = run(&["--restart"]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("not a list of mpdem's outputs"), "{stderr}");
+    assert_eq!(
+        std::fs::read(out.join("checkpoint.bin")).unwrap(),
+        checkpoint
+    );
+    std::fs::remove_dir_all(&base).ok();
+}
+
+#[test]
+fn a_runner_runs_once() {
+    use mpdem::runner::{RunError, RunOptions, Runner};
+    let mut scene = common::load_scene("wave_1d.ron");
+    scene.time.end = 0.001;
+    let out = std::env::temp_dir().join(format!("mpdem-runs-once-{}", std::process::id()));
+    let mut runner = Runner::new(&scene, None, RunOptions::into_folder(&out)).expect("a runner");
+    let stop = std::sync::atomic::AtomicBool::new(false);
+    assert!(runner.run(&stop, |_| {}).is_ok());
+    assert!(matches!(
+        runner.run(&stop, |_| {}),
+        Err(RunError::RanAlready)
+    ));
+    std::fs::remove_dir_all(&out).ok();
 }

@@ -22,9 +22,9 @@ use std::path::{Path, PathBuf};
 /// * `vtk/points_NNNNN.vtu` every frame interval and `points.pvd` (open this in ParaView);
 /// * with rigid blocks, their outlines: `vtk/blocks_NNNNN.vtu` and `blocks.pvd`, and `blocks.csv`;
 /// * `probes.csv`, `energy.csv`, with stages `stages.csv`, and with body
-///   contact laws `body_contacts.csv`, appended to and flushed as the run
-///   records each sample, so that a run killed at any point keeps its
-///   series up to there;
+///   contact laws `body_contacts.csv`, appended to as the run records each
+///   sample (each sample's rows in one write), so that a run killed at any
+///   point keeps its series up to there;
 /// * `snapshot.png` (final state coloured by displacement magnitude),
 ///   `energy.png` and `probe_<name>_{velocity,displacement,stress}.png`;
 /// * `outputs.txt`, the list of these files ([`OutputManifest`]): a new run
@@ -128,17 +128,21 @@ struct SeriesFile {
     path: PathBuf,
     /// Rows written so far.
     written: usize,
-    out: BufWriter<File>,
+    file: File,
+    /// The rows of one append, written to the file in one call (so that a
+    /// killed run is unlikely to leave a part of a row).
+    rows: Vec<u8>,
 }
 
 impl SeriesFile {
-    /// Appends the rows recorded since the last call and flushes them.
+    /// Appends the rows recorded since the last call.
     fn append(&mut self, world: &bevy_ecs::world::World, bodies: &[String]) -> std::io::Result<()> {
         let Self {
             record,
             path,
             written,
-            out,
+            file,
+            rows: buffer,
         } = self;
         record
             .with(world, |series| {
@@ -146,11 +150,13 @@ impl SeriesFile {
                 if rows <= *written {
                     return Ok(());
                 }
+                buffer.clear();
                 for k in *written..rows {
-                    series.write_row(k, bodies, out)?;
+                    series.write_row(k, bodies, buffer)?;
                 }
+                file.write_all(buffer)?;
                 *written = rows;
-                out.flush()
+                Ok(())
             })
             .map_err(|e| located(path, e))
     }
@@ -365,7 +371,8 @@ impl RunOutput {
             record,
             path,
             written,
-            out: BufWriter::new(out),
+            file: out,
+            rows: Vec::new(),
         };
         file.append(world, bodies)?;
         Ok(file)

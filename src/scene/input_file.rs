@@ -1,6 +1,6 @@
 //! Reading a scene's input files (the scene and its point lists) with a cap
-//! on their size, so that an endless file (`/dev/zero`, a pipe that never
-//! closes) is refused instead of filling the memory.
+//! on their size, so that an endless file (`/dev/zero`, a pipe that keeps
+//! writing) is refused instead of filling the memory.
 
 use std::io::Read;
 use std::path::Path;

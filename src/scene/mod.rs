@@ -136,8 +136,10 @@ pub struct TimeSpec {
 /// running for a small scene.
 pub const MAX_STEPS: u64 = 100_000_000;
 
-/// The cap on the samples a run records (`end` over
-/// `output.probe_interval`): each is kept in memory until the run ends.
+/// The cap on the rows a run records: its samples (`end` over
+/// `output.probe_interval`) times its records (energies, probes, blocks
+/// and their parts, pairs of bodies under a law), each kept in memory,
+/// about 100 bytes a row, until the run ends.
 pub const MAX_SAMPLES: u64 = 10_000_000;
 
 impl TimeSpec {

@@ -4,6 +4,7 @@ use super::axisymmetry::axisymmetry_error;
 use super::{
     BodySpec, InitialStress, InitialVelocity, ListedPoint, MAX_SAMPLES, MAX_STEPS, MotionSpec,
     PROBE_PLOT_PREFIX, RUN_FILE_STEMS, Scene, SceneError, Shape, SourceLocation, VelocityField,
+    whole_steps,
 };
 use crate::components::RigidVelocity;
 use crate::contact::ForceApplication;
@@ -152,12 +153,36 @@ impl Scene {
                 ),
             ));
         }
-        let sampled = self.time.end / self.output.probe_interval_or_default(self.time.end);
-        if sampled > MAX_SAMPLES as Real {
+        // The rows the records keep, as the spawn reserves them: a row per
+        // sample for the energies, and one per probe, block, compound part
+        // and pair of bodies under a law.
+        let samples = (steps.round()
+            / whole_steps(
+                self.output.probe_interval_or_default(self.time.end),
+                self.time.dt,
+            ) as Real)
+            + 2.0;
+        let parts: usize = self
+            .blocks
+            .iter()
+            .map(|b| match &b.shape {
+                crate::rigid::BlockShape::Compound { parts } => parts.len(),
+                _ => 0,
+            })
+            .sum();
+        let members = |name: &str| self.contact_members(name).map_or(0, |m| m.len());
+        let pairs: usize = self
+            .body_contacts
+            .iter()
+            .map(|c| members(&c.between.0) * members(&c.between.1))
+            .sum();
+        let series = 1 + self.probes.len() + self.blocks.len() + parts + pairs;
+        let rows = samples * series as Real;
+        if rows > MAX_SAMPLES as Real {
             return Err(v.invalid(
                 &["output", "probe_interval"],
                 format!(
-                    "output.probe_interval: {:e} s over time.end = {} s gives {sampled:.3e} samples, more than the {MAX_SAMPLES} a run keeps in memory: sample less often",
+                    "output.probe_interval: {:e} s over time.end = {} s gives {samples:.3e} samples of {series} records (energies, probes, blocks and their parts, body pairs), {rows:.3e} rows, more than the {MAX_SAMPLES} a run keeps in memory: sample less often",
                     self.output.probe_interval_or_default(self.time.end),
                     self.time.end
                 ),

@@ -78,7 +78,12 @@ pub fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T 
 /// Writes the scene `file` of `scenes/`, each `(from, to)` of `edits`
 /// replaced once, as `name` into a fresh temporary folder named after
 /// `tag`; returns the folder and the scene file.
-fn write_edited(file: &str, tag: &str, name: &str, edits: &[(&str, &str)]) -> (PathBuf, PathBuf) {
+pub fn write_edited(
+    file: &str,
+    tag: &str,
+    name: &str,
+    edits: &[(&str, &str)],
+) -> (PathBuf, PathBuf) {
     let base = std::env::temp_dir().join(format!("mpdem-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&base).expect("temporary folder");
     let mut text = std::fs::read_to_string(scene_path(file)).expect("scene");
