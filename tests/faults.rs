@@ -14,6 +14,18 @@ fn mpdem() -> Command {
     Command::new(env!("CARGO_BIN_EXE_mpdem"))
 }
 
+/// `mpdem run SCENE --quiet --out OUT` with `extra` arguments.
+fn run_into(scene: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
+    mpdem()
+        .arg("run")
+        .arg(scene)
+        .args(["--quiet", "--out"])
+        .arg(out)
+        .args(extra)
+        .output()
+        .expect("mpdem runs")
+}
+
 /// The wave scene run for 10 s (100 000 steps, tens of seconds) into
 /// `out`, checkpointed every 0.01 s, with standard error piped.
 fn long_run(tag: &str) -> (PathBuf, PathBuf, Child) {
@@ -105,14 +117,7 @@ fn a_killed_run_keeps_its_series_up_to_its_last_sample() {
 fn a_damaged_checkpoint_is_refused_and_nothing_is_overwritten() {
     let (base, scene) = common::edited_wave_scene("damaged", "end: 1.0", "end: 0.05");
     let out = base.join("out");
-    let run = |extra: &[&str]| {
-        mpdem()
-            .args(["run", scene.to_str().unwrap(), "--quiet", "--out"])
-            .arg(&out)
-            .args(extra)
-            .output()
-            .expect("mpdem runs")
-    };
+    let run = |extra: &[&str]| run_into(&scene, &out, extra);
     assert!(run(&["--checkpoint-every", "0.02"]).status.success());
     let checkpoint = out.join("checkpoint.bin");
     let mut bytes = std::fs::read(&checkpoint).unwrap();
@@ -272,14 +277,7 @@ fn runaway_input_is_refused_with_its_size() {
 fn a_restart_that_cannot_open_the_folder_keeps_the_checkpoint() {
     let (base, scene) = common::edited_wave_scene("restart-kept", "end: 1.0", "end: 0.02");
     let out = base.join("out");
-    let run = |extra: &[&str]| {
-        mpdem()
-            .args(["run", scene.to_str().unwrap(), "--quiet", "--out"])
-            .arg(&out)
-            .args(extra)
-            .output()
-            .expect("mpdem runs")
-    };
+    let run = |extra: &[&str]| run_into(&scene, &out, extra);
     assert!(run(&["--checkpoint-every", "0.01"]).status.success());
     let checkpoint = std::fs::read(out.join("checkpoint.bin")).unwrap();
     // A list of outputs that is not mpdem's: the new run refuses the folder.
