@@ -36,6 +36,105 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         end: scene.time.end,
     };
     let mut warnings = Vec::new();
+    let (bodies, body_warnings) = spawn_bodies(scene, &mut world, &grid)?;
+    warnings.extend(body_warnings);
+    warnings.extend(time_step_warnings(scene, &clock, &grid));
+    let (block_warnings, absent_blocks) =
+        super::spawn_blocks::spawn_blocks(scene, &mut world, &bodies)?;
+    warnings.extend(block_warnings);
+    let (mut probes, probe_warnings) = place_probes(scene, &world, &bodies);
+    warnings.extend(probe_warnings);
+    // Room for every sample of the run (the first, one per interval, and
+    // one at the end when it falls between), so that recording never
+    // allocates inside the step.
+    let samples = (clock.total_steps() / probes.every + 2) as usize;
+    probes.samples.reserve_exact(samples * probes.probes.len());
+    probes.record(0.0, |e| world.get::<MaterialPoints>(e));
+    let initial_energy = EnergySample::of(
+        0.0,
+        bodies
+            .iter()
+            .filter_map(|e| Some((world.get::<MaterialPoints>(*e)?, world.get::<Material>(*e)?))),
+        scene.gravity,
+        scene.settings.geometry,
+        &mut Vec::new(),
+    );
+    world.insert_resource(grid);
+    world.insert_resource(clock);
+    world.insert_resource(scene.settings);
+    world.insert_resource(scene.contact);
+    world.insert_resource(crate::resources::BlockContactHistory::default());
+    let mut block_log = BlockLog {
+        names: scene.blocks.iter().map(|b| b.name.clone()).collect(),
+        samples: Vec::with_capacity(samples * scene.blocks.len()),
+        parts: Vec::with_capacity(
+            samples
+                * scene
+                    .blocks
+                    .iter()
+                    .map(|b| match &b.shape {
+                        crate::rigid::BlockShape::Compound { parts } => parts.len(),
+                        _ => 0,
+                    })
+                    .sum::<usize>(),
+        ),
+    };
+    record_blocks_at_the_start(&mut world, &mut block_log);
+    world.insert_resource(block_log);
+    world.insert_resource(Gravity(scene.gravity));
+    world.insert_resource(Diagnostics::default());
+    world.insert_resource(probes);
+    let mut energy = EnergyLog {
+        samples: Vec::with_capacity(samples),
+    };
+    energy.samples.push(initial_energy);
+    world.insert_resource(energy);
+    world.insert_resource(StageLog::default());
+    let laws = body_pair_laws(scene);
+    warnings.extend(layout_warnings(scene, &world, &bodies, &laws));
+    warnings.extend(undamped_contact_warning(scene));
+    // Room for every sample, as for the probes: recording never allocates.
+    // The first, at the start, has no contacts yet.
+    let mut pair_log = BodyPairLog {
+        samples: Vec::with_capacity(samples * laws.len()),
+    };
+    pair_log.samples.extend(laws.iter().map(|l| BodyPairSample {
+        time: 0.0,
+        a: l.a,
+        b: l.b,
+        summary: PairSummary::default(),
+    }));
+    world.insert_resource(pair_log);
+    let shared = share_layers(&mut world, &bodies, &scene.shared_layers());
+    world.insert_resource(shared);
+    world.insert_resource(BodyContacts {
+        laws,
+        ..Default::default()
+    });
+    world.insert_resource(crate::resources::ContactWork::default());
+    world.insert_resource(crate::resources::LoadWork::default());
+    if !scene.stages.is_empty() {
+        let mut plan = StagePlan {
+            stages: scene.stages.clone(),
+            absent_blocks,
+            bodies: Vec::new(),
+            dynamic_blocks: Vec::new(),
+            progress: StageProgress::default(),
+        };
+        warnings.extend(crate::systems::enter_stage(&mut world, &mut plan, 0));
+        world.insert_resource(plan);
+    }
+    Ok((world, warnings))
+}
+
+/// Spawns one entity per body, in scene order, with its points, material,
+/// layer and scratch; returns the entities and the warnings about them.
+fn spawn_bodies(
+    scene: &Scene,
+    world: &mut World,
+    grid: &Grid,
+) -> Result<(Vec<Entity>, Vec<String>), SceneError> {
+    let mut warnings = Vec::new();
     let mut bodies = Vec::with_capacity(scene.bodies.len());
     for (index, spec) in scene.bodies.iter().enumerate() {
         let invalid = |message: String| SceneError::Invalid {
@@ -90,7 +189,14 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         }
         bodies.push(entity);
     }
-    warnings.extend(off_step_warnings(scene, &clock));
+    Ok((bodies, warnings))
+}
+
+/// Warnings about the time step: off the end or an interval, and above a
+/// material's CFL limit on this grid.
+fn time_step_warnings(scene: &Scene, clock: &Clock, grid: &Grid) -> Vec<String> {
+    let mut warnings = Vec::new();
+    warnings.extend(off_step_warnings(scene, clock));
     for material in &scene.materials {
         let wave_speed = (material.model.as_model().p_wave_modulus() / material.density).sqrt();
         let limit = grid.cell_size / wave_speed;
@@ -101,12 +207,17 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
             ));
         }
     }
-    let (block_warnings, absent_blocks) =
-        super::spawn_blocks::spawn_blocks(scene, &mut world, &bodies)?;
-    warnings.extend(block_warnings);
+    warnings
+}
+
+/// The probes, each on the point of its body nearest where it is placed,
+/// and warnings for those placed more than a cell from it.
+fn place_probes(scene: &Scene, world: &World, bodies: &[Entity]) -> (Probes, Vec<String>) {
+    let clock_end = scene.time.end;
+    let mut warnings = Vec::new();
     let mut probes = Probes {
         probes: Vec::new(),
-        every: scene.output.probe_every(clock.end, clock.dt),
+        every: scene.output.probe_every(clock_end, scene.time.dt),
         samples: Vec::new(),
     };
     for spec in &scene.probes {
@@ -141,52 +252,12 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
             point: nearest,
         });
     }
-    // Room for every sample of the run (the first, one per interval, and
-    // one at the end when it falls between), so that recording never
-    // allocates inside the step.
-    let samples = (clock.total_steps() / probes.every + 2) as usize;
-    probes.samples.reserve_exact(samples * probes.probes.len());
-    probes.record(0.0, |e| world.get::<MaterialPoints>(e));
-    let initial_energy = EnergySample::of(
-        0.0,
-        bodies
-            .iter()
-            .filter_map(|e| Some((world.get::<MaterialPoints>(*e)?, world.get::<Material>(*e)?))),
-        scene.gravity,
-        scene.settings.geometry,
-        &mut Vec::new(),
-    );
-    world.insert_resource(grid);
-    world.insert_resource(clock);
-    world.insert_resource(scene.settings);
-    world.insert_resource(scene.contact);
-    world.insert_resource(crate::resources::BlockContactHistory::default());
-    let mut block_log = BlockLog {
-        names: scene.blocks.iter().map(|b| b.name.clone()).collect(),
-        samples: Vec::with_capacity(samples * scene.blocks.len()),
-        parts: Vec::with_capacity(
-            samples
-                * scene
-                    .blocks
-                    .iter()
-                    .map(|b| match &b.shape {
-                        crate::rigid::BlockShape::Compound { parts } => parts.len(),
-                        _ => 0,
-                    })
-                    .sum::<usize>(),
-        ),
-    };
-    record_blocks_at_the_start(&mut world, &mut block_log);
-    world.insert_resource(block_log);
-    world.insert_resource(Gravity(scene.gravity));
-    world.insert_resource(Diagnostics::default());
-    world.insert_resource(probes);
-    let mut energy = EnergyLog {
-        samples: Vec::with_capacity(samples),
-    };
-    energy.samples.push(initial_energy);
-    world.insert_resource(energy);
-    world.insert_resource(StageLog::default());
+    (probes, warnings)
+}
+
+/// The contact law of every pair of bodies (a < b), expanded from the
+/// scene's laws between bodies or groups, sorted by pair.
+fn body_pair_laws(scene: &Scene) -> Vec<BodyPairLaw> {
     let mut laws: Vec<BodyPairLaw> = Vec::new();
     for spec in &scene.body_contacts {
         let members = |name: &str| scene.contact_members(name).unwrap_or_default();
@@ -201,11 +272,24 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
         }
     }
     laws.sort_unstable_by_key(|l| (l.a, l.b));
+    laws
+}
+
+/// Warnings about where the bodies start: on a free edge gravity does not
+/// pull them off, overlapping under a contact law, and body contact springs
+/// the time step cannot follow.
+fn layout_warnings(
+    scene: &Scene,
+    world: &World,
+    bodies: &[Entity],
+    laws: &[BodyPairLaw],
+) -> Vec<String> {
+    let mut warnings = Vec::new();
     // Every body was spawned with its points just above.
     let placed: Option<Vec<(&str, &MaterialPoints)>> = scene
         .bodies
         .iter()
-        .zip(&bodies)
+        .zip(bodies)
         .map(|(spec, &e)| Some((spec.name.as_str(), world.get::<MaterialPoints>(e)?)))
         .collect();
     if let Some(placed) = placed {
@@ -217,46 +301,14 @@ pub fn spawn_scene(scene: &Scene) -> Result<(World, Vec<String>), SceneError> {
             .map_or(start.edges, |c| c.apply(start.edges));
         let gravity = first.and_then(|s| s.gravity).unwrap_or(scene.gravity);
         warnings.extend(free_edge_warnings(&start, gravity, &placed));
-        warnings.extend(body_overlap_warnings(&placed, &laws));
+        warnings.extend(body_overlap_warnings(&placed, laws));
         warnings.extend(body_contact_stability_warnings(
             scene.time.dt,
             &placed,
-            &laws,
+            laws,
         ));
     }
-    warnings.extend(undamped_contact_warning(scene));
-    // Room for every sample, as for the probes: recording never allocates.
-    // The first, at the start, has no contacts yet.
-    let mut pair_log = BodyPairLog {
-        samples: Vec::with_capacity(samples * laws.len()),
-    };
-    pair_log.samples.extend(laws.iter().map(|l| BodyPairSample {
-        time: 0.0,
-        a: l.a,
-        b: l.b,
-        summary: PairSummary::default(),
-    }));
-    world.insert_resource(pair_log);
-    let shared = share_layers(&mut world, &bodies, &scene.shared_layers());
-    world.insert_resource(shared);
-    world.insert_resource(BodyContacts {
-        laws,
-        ..Default::default()
-    });
-    world.insert_resource(crate::resources::ContactWork::default());
-    world.insert_resource(crate::resources::LoadWork::default());
-    if !scene.stages.is_empty() {
-        let mut plan = StagePlan {
-            stages: scene.stages.clone(),
-            absent_blocks,
-            bodies: Vec::new(),
-            dynamic_blocks: Vec::new(),
-            progress: StageProgress::default(),
-        };
-        warnings.extend(crate::systems::enter_stage(&mut world, &mut plan, 0));
-        world.insert_resource(plan);
-    }
-    Ok((world, warnings))
+    warnings
 }
 
 /// The points of one body: positions from the shape, then mass, velocity and
