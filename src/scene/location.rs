@@ -111,9 +111,11 @@ fn find_anchor(text: &str, from: usize, anchor: &str, kind: Anchor) -> Option<us
                 })
             }
         } else {
-            !text[..at].chars().next_back().is_some_and(is_ident)
+            let (depth, in_string) = depth_and_string(&text[..at]);
+            !in_string
+                && !text[..at].chars().next_back().is_some_and(is_ident)
                 && text[end..].trim_start().starts_with(':')
-                && (kind != Anchor::Section || depth(&text[..at]) == 1)
+                && (kind != Anchor::Section || depth == 1)
         };
         if whole {
             return Some(at);
@@ -123,8 +125,9 @@ fn find_anchor(text: &str, from: usize, anchor: &str, kind: Anchor) -> Option<us
     None
 }
 
-/// The bracket depth at the end of `text` (strings skipped).
-fn depth(text: &str) -> usize {
+/// The bracket depth at the end of `text` (strings skipped), and whether
+/// `text` ends inside a string literal.
+fn depth_and_string(text: &str) -> (usize, bool) {
     let (mut depth, mut in_string, mut escaped) = (0usize, false, false);
     for b in text.bytes() {
         match (in_string, escaped, b) {
@@ -136,7 +139,7 @@ fn depth(text: &str) -> usize {
             _ => {}
         }
     }
-    depth
+    (depth, in_string)
 }
 
 /// Where the value that begins at `from` ends (byte offset): at the first
@@ -239,5 +242,19 @@ mod tests {
         assert_eq!(at.line_col, Some((3, 10)));
         let name = SourceLocation::find(text, Path::new("s.ron"), &["\"α cells\""]);
         assert_eq!(name.line_col, Some((4, 22)));
+    }
+
+    #[test]
+    fn a_section_is_one_of_the_scenes_own_fields_outside_strings() {
+        // A block's `contact:` law, and `grid:` inside the name, are not the
+        // sections; a body's name matches as the value of its `name:` only.
+        let text = "Scene(\n  name: Some(\"grid: coarse\"),\n  blocks: [(name: \"b\", contact: (friction: 0.5))],\n  bodies: [(name: \"x\", material: \"a\"), (name: \"a\", material: \"m\")],\n  contact: (iter_period: Some(0)),\n  grid: (cells: (2, 2)),\n)";
+        let path = Path::new("s.ron");
+        let at = SourceLocation::find(text, path, &["contact", "iter_period"]);
+        assert_eq!(at.line_col, Some((5, 13)));
+        let at = SourceLocation::find(text, path, &["grid", "cells"]);
+        assert_eq!(at.line_col, Some((6, 10)));
+        let at = SourceLocation::find(text, path, &["bodies", "\"a\"", "material"]);
+        assert_eq!(at.line_col, Some((4, 52)));
     }
 }
