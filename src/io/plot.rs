@@ -223,13 +223,22 @@ fn draw_series_chart<DB: DrawingBackend>(
     series: &[Series],
 ) -> DrawResult<DB> {
     root.fill(&WHITE)?;
+    // The legend gets a column of its own, right of the chart, so that it
+    // never covers a curve.
+    let named = series.iter().any(|s| !s.name.is_empty());
+    let (width, _) = root.dim_in_pixel();
+    let (plot_area, legend_area) = root.split_horizontally(if named {
+        width.saturating_sub(LEGEND_WIDTH)
+    } else {
+        width
+    });
     let samples = || {
         series
             .iter()
             .flat_map(|s| s.points.iter().copied())
             .filter(|(x, y)| x.is_finite() && y.is_finite())
     };
-    let mut chart = ChartBuilder::on(root)
+    let mut chart = ChartBuilder::on(&plot_area)
         .caption(title, (FONT, 26))
         .margin(15)
         .x_label_area_size(50)
@@ -249,6 +258,7 @@ fn draw_series_chart<DB: DrawingBackend>(
         .axis_desc_style((FONT, 17))
         .draw()?;
 
+    let mut row = 0;
     for (index, s) in series.iter().enumerate() {
         let color = SERIES_COLORS[index % SERIES_COLORS.len()];
         let points = s
@@ -256,35 +266,38 @@ fn draw_series_chart<DB: DrawingBackend>(
             .iter()
             .copied()
             .filter(|(x, y)| x.is_finite() && y.is_finite());
-        let annotation = match s.style {
+        match s.style {
             SeriesStyle::Line => {
-                chart.draw_series(LineSeries::new(points, color.stroke_width(2)))?
+                chart.draw_series(LineSeries::new(points, color.stroke_width(2)))?;
             }
             SeriesStyle::Markers => {
-                chart.draw_series(points.map(|p| Circle::new(p, 3, color.filled())))?
+                chart.draw_series(points.map(|p| Circle::new(p, 3, color.filled())))?;
             }
-        };
-        if !s.name.is_empty() {
-            let style = s.style;
-            annotation.label(s.name).legend(move |(x, y)| match style {
-                SeriesStyle::Line => {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)).into_dyn()
-                }
-                SeriesStyle::Markers => Circle::new((x + 10, y), 3, color.filled()).into_dyn(),
-            });
         }
-    }
-    if series.iter().any(|s| !s.name.is_empty()) {
-        chart
-            .configure_series_labels()
-            .label_font((FONT, 15))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()?;
+        if !s.name.is_empty() {
+            let y = 70 + 24 * row;
+            match s.style {
+                SeriesStyle::Line => legend_area.draw(&PathElement::new(
+                    vec![(10, y), (34, y)],
+                    color.stroke_width(2),
+                ))?,
+                SeriesStyle::Markers => {
+                    legend_area.draw(&Circle::new((22, y), 3, color.filled()))?
+                }
+            }
+            legend_area.draw(&Text::new(
+                s.name.to_string(),
+                (42, y - 8),
+                (FONT, 15).into_font().color(&BLACK),
+            ))?;
+            row += 1;
+        }
     }
     Ok(())
 }
+
+/// Width of the legend column right of a line chart (pixels).
+const LEGEND_WIDTH: u32 = 150;
 
 /// Draws the snapshot of [`plot_points`] on `root`: title band, chart and colour bar.
 fn draw_snapshot<DB: DrawingBackend>(
