@@ -452,55 +452,42 @@ impl RunOutput {
     }
 
     fn plot_energy(&mut self, energy: &EnergyLog, per: &str) -> std::io::Result<()> {
-        let pick = |f: fn(&crate::resources::EnergySample) -> Real| -> Vec<(Real, Real)> {
-            energy.samples.iter().map(|s| (s.time, f(s))).collect()
-        };
-        let (kinetic, strain, contact, total, inelastic, balance) = (
-            pick(|s| s.kinetic),
-            pick(|s| s.strain),
-            pick(|s| s.contact),
-            pick(|s| s.total()),
-            pick(|s| s.inelastic),
-            pick(|s| s.balance()),
-        );
+        // Every column of energy.csv, so the balance can be checked from
+        // the plot.
+        type Term = (&'static str, fn(&crate::resources::EnergySample) -> Real);
+        const TERMS: [Term; 11] = [
+            ("kinetic", |s| s.kinetic),
+            ("strain", |s| s.strain),
+            ("contact", |s| s.contact),
+            ("total", |s| s.total()),
+            ("gravity", |s| s.gravity),
+            ("inelastic", |s| s.inelastic),
+            ("loads", |s| s.loads),
+            ("blocks", |s| s.blocks),
+            ("dissipated", |s| s.dissipated),
+            ("damped", |s| s.damped),
+            ("balance", |s| s.balance()),
+        ];
+        let curves: Vec<Vec<(Real, Real)>> = TERMS
+            .iter()
+            .map(|(_, f)| energy.samples.iter().map(|s| (s.time, f(s))).collect())
+            .collect();
+        let series: Vec<Series> = TERMS
+            .iter()
+            .zip(&curves)
+            .map(|((name, _), points)| Series {
+                name,
+                points,
+                style: SeriesStyle::Line,
+            })
+            .collect();
         self.folder.write_file("energy.png", |path| {
             plot_series(
                 path,
                 "Energy",
                 "time (s)",
                 &format!("energy (J/{per})"),
-                &[
-                    Series {
-                        name: "kinetic",
-                        points: &kinetic,
-                        style: SeriesStyle::Line,
-                    },
-                    Series {
-                        name: "strain",
-                        points: &strain,
-                        style: SeriesStyle::Line,
-                    },
-                    Series {
-                        name: "contact",
-                        points: &contact,
-                        style: SeriesStyle::Line,
-                    },
-                    Series {
-                        name: "total",
-                        points: &total,
-                        style: SeriesStyle::Line,
-                    },
-                    Series {
-                        name: "inelastic",
-                        points: &inelastic,
-                        style: SeriesStyle::Line,
-                    },
-                    Series {
-                        name: "balance",
-                        points: &balance,
-                        style: SeriesStyle::Line,
-                    },
-                ],
+                &series,
             )
         })
     }

@@ -44,8 +44,8 @@ const VIRIDIS: [(u8, u8, u8); 9] = [
 /// Colour of points whose value is not finite.
 const NAN_COLOR: RGBColor = RGBColor(160, 160, 160);
 
-/// Distinct series colours (Tableau 10), reused cyclically.
-const SERIES_COLORS: [RGBColor; 10] = [
+/// Distinct series colours (Tableau 10, then black), reused cyclically.
+const SERIES_COLORS: [RGBColor; 11] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),
     RGBColor(44, 160, 44),
@@ -56,6 +56,7 @@ const SERIES_COLORS: [RGBColor; 10] = [
     RGBColor(127, 127, 127),
     RGBColor(188, 189, 34),
     RGBColor(23, 190, 207),
+    RGBColor(0, 0, 0),
 ];
 
 /// One named curve of (x, y) samples.
