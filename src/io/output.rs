@@ -472,15 +472,7 @@ impl RunOutput {
             .iter()
             .map(|(_, f)| energy.samples.iter().map(|s| (s.time, f(s))).collect())
             .collect();
-        let series: Vec<Series> = TERMS
-            .iter()
-            .zip(&curves)
-            .map(|((name, _), points)| Series {
-                name,
-                points,
-                style: SeriesStyle::Line,
-            })
-            .collect();
+        let series = lines(TERMS.iter().map(|(name, _)| *name), &curves);
         self.folder.write_file("energy.png", |path| {
             plot_series(
                 path,
@@ -530,15 +522,7 @@ impl RunOutput {
                     .iter()
                     .map(|(_, f)| probes.series(k).map(|s| (s.time, f(s))).collect())
                     .collect();
-                let series: Vec<Series> = picks
-                    .iter()
-                    .zip(&curves)
-                    .map(|((name, _), points)| Series {
-                        name,
-                        points,
-                        style: SeriesStyle::Line,
-                    })
-                    .collect();
+                let series = lines(picks.iter().map(|(name, _)| *name), &curves);
                 let name = format!("{PROBE_PLOT_PREFIX}{}_{group}.png", file_safe(&probe.name));
                 self.folder.write_file(&name, |path| {
                     plot_series(
@@ -576,6 +560,21 @@ impl RunOutput {
 
 /// Steps between frames: the scene's frame interval (its default follows
 /// the run's `time.end`) in whole steps, at least one.
+/// A line series for each of `names` over the curve of the same rank.
+fn lines<'a>(
+    names: impl Iterator<Item = &'a str>,
+    curves: &'a [Vec<(Real, Real)>],
+) -> Vec<Series<'a>> {
+    names
+        .zip(curves)
+        .map(|(name, points)| Series {
+            name,
+            points,
+            style: SeriesStyle::Line,
+        })
+        .collect()
+}
+
 fn frame_every(scene: &Scene, sim: &Simulation) -> u64 {
     let clock = sim.clock();
     scene.output.frame_every(clock.end, clock.dt)
