@@ -32,6 +32,7 @@ pub mod materials;
 pub mod math;
 pub(crate) mod node_rect;
 pub(crate) mod parallel;
+pub mod plugins;
 pub mod resources;
 pub mod rigid;
 pub(crate) mod rules;
@@ -46,15 +47,16 @@ pub mod verify;
 #[path = "../systems/mod.rs"]
 pub mod systems;
 
-pub use simulation::{Simulation, StepError};
+pub use simulation::{PluginError, Simulation, StepError};
 
 /// The common imports of a user of the library.
 pub mod prelude {
     pub use crate::components::{BodyName, GridLayer, Material, MaterialPoints};
     pub use crate::math::{DMat2, DVec2, Real, SymTensor};
+    pub use crate::plugins::{MpmPlugin, PluginSetup};
     pub use crate::resources::{Clock, Gravity, Grid, Probes, Settings};
     pub use crate::scene::Scene;
-    pub use crate::systems::{MpmPlugin, MpmSchedule, MpmSystems};
-    pub use crate::{Simulation, StepError};
+    pub use crate::systems::{MpmSchedule, MpmSystems};
+    pub use crate::{PluginError, Simulation, StepError};
     pub use bevy_ecs::prelude::*;
 }

@@ -1,12 +1,13 @@
 //! The library entry point: a world and its step schedule.
 
-use crate::checkpoint::KeptState;
 use crate::checkpoint::StateHasher;
 use crate::checkpoint::{CheckpointError, restore_checkpoint, scene_fingerprint, write_checkpoint};
 use crate::components::{
     BlockId, BodyName, MaterialPoints, Pose, RigidVelocity, bodies_in_scene_order,
 };
+use crate::io::csv::CsvRecord;
 use crate::math::Real;
+use crate::plugins::{DEFAULT_PLUGINS, MpmPlugin, PluginSetup, Registries};
 use crate::resources::{Clock, Diagnostics, NumericalFailure};
 use crate::scene::{Scene, SceneError, spawn_scene};
 use crate::systems::build_schedule;
@@ -28,6 +29,17 @@ pub enum StepError {
     Schedule(String),
 }
 
+/// Why a plugin could not be added.
+#[derive(Debug, thiserror::Error)]
+pub enum PluginError {
+    /// The plugin could not set its feature up for the scene.
+    #[error(transparent)]
+    Build(#[from] SceneError),
+    /// Its systems make the schedule invalid.
+    #[error(transparent)]
+    Step(#[from] StepError),
+}
+
 /// A running simulation: the ECS world (bodies, grid, clock, records) and
 /// the step schedule.
 ///
@@ -41,12 +53,15 @@ pub enum StepError {
 pub struct Simulation {
     world: World,
     schedule: Schedule,
-    name: String,
-    warnings: Vec<String>,
+    /// The scene the world was spawned from, which plugins set up from.
+    scene: Scene,
+    /// The blocks absent at the start, until the stages' plugin takes them.
+    absent_blocks: Vec<crate::components::BlockTemplate>,
+    /// What the plugins registered: the state checkpoints carry (and the
+    /// user state), the CSV series, the warnings.
+    registries: Registries,
     /// The scene's fingerprint, which a checkpoint must match.
     fingerprint: u64,
-    /// User state (resources and components) that checkpoints carry.
-    kept: KeptState,
 }
 
 impl Simulation {
@@ -58,16 +73,33 @@ impl Simulation {
     /// Validates and spawns a scene (e.g. one built in code).
     pub fn from_scene(scene: &Scene) -> Result<Self, SceneError> {
         scene.validate()?;
-        let (world, warnings) = spawn_scene(scene)?;
-        let schedule = build_schedule(scene.settings.scheme);
-        Ok(Self {
-            world,
-            schedule,
-            name: scene.display_name().to_owned(),
-            warnings,
+        let spawned = spawn_scene(scene)?;
+        let mut sim = Self {
+            world: spawned.world,
+            schedule: build_schedule(scene.settings.scheme),
+            scene: scene.clone(),
+            absent_blocks: spawned.absent_blocks,
+            registries: Registries {
+                warnings: spawned.warnings,
+                ..Registries::default()
+            },
             fingerprint: scene_fingerprint(scene),
-            kept: KeptState::default(),
-        })
+        };
+        for plugin in DEFAULT_PLUGINS {
+            sim.build_plugin(plugin)?;
+            plugin.add_systems(&mut sim.schedule, scene.settings.scheme);
+        }
+        Ok(sim)
+    }
+
+    fn build_plugin(&mut self, plugin: &dyn MpmPlugin) -> Result<(), SceneError> {
+        let mut setup = PluginSetup::new(
+            &self.scene,
+            &mut self.world,
+            &mut self.registries,
+            &mut self.absent_blocks,
+        );
+        plugin.build(&mut setup)
     }
 
     /// Builds the scene, then puts into it the state of the checkpoint at
@@ -110,7 +142,13 @@ impl Simulation {
         if scene_fingerprint(scene) != self.fingerprint {
             return Err(refuse("the simulation was built from another scene"));
         }
-        restore_checkpoint(&mut self.world, scene, self.fingerprint, &self.kept, path)
+        restore_checkpoint(
+            &mut self.world,
+            scene,
+            self.fingerprint,
+            &self.registries.kept,
+            path,
+        )
     }
 
     /// Writes the state of the run to `path` (see [`crate::checkpoint`]),
@@ -118,7 +156,12 @@ impl Simulation {
     /// resource registered with [`Simulation::keep_in_checkpoints`] is
     /// missing from the world.
     pub fn write_checkpoint(&mut self, path: &Path) -> Result<(), CheckpointError> {
-        write_checkpoint(&mut self.world, self.fingerprint, &self.kept, path)
+        write_checkpoint(
+            &mut self.world,
+            self.fingerprint,
+            &self.registries.kept,
+            path,
+        )
     }
 
     /// Makes checkpoints carry the resource `R` that user systems keep
@@ -127,7 +170,7 @@ impl Simulation {
     /// stopped. Register it before writing and before restoring a
     /// checkpoint; registering a name again replaces the type.
     pub fn keep_in_checkpoints<R: Resource + Serialize + DeserializeOwned>(&mut self, name: &str) {
-        self.kept.keep_resource::<R>(name);
+        self.registries.kept.keep_resource::<R>(name);
     }
 
     /// Makes checkpoints carry the component `C` that user systems keep on
@@ -141,17 +184,23 @@ impl Simulation {
         &mut self,
         name: &str,
     ) {
-        self.kept.keep_component::<C>(name);
+        self.registries.kept.keep_component::<C>(name);
     }
 
     /// The scene's name.
     pub fn name(&self) -> &str {
-        &self.name
+        self.scene.display_name()
     }
 
     /// Warnings found while building (e.g. a time step above the CFL limit).
     pub fn warnings(&self) -> &[String] {
-        &self.warnings
+        &self.registries.warnings
+    }
+
+    /// The records the outputs write as CSV, in the order they were
+    /// registered.
+    pub(crate) fn csv_records(&self) -> &[CsvRecord] {
+        &self.registries.records
     }
 
     /// The ECS world: bodies, resources and records.
@@ -180,13 +229,15 @@ impl Simulation {
         self.initialize_schedule()
     }
 
-    /// Adds a plugin's systems to the step (see
-    /// [`crate::systems::MpmPlugin`]); like [`Simulation::add_systems`], an
-    /// ambiguous addition is reported here.
-    pub fn add_plugin(&mut self, plugin: &dyn crate::systems::MpmPlugin) -> Result<(), StepError> {
-        let scheme = self.world.resource::<crate::resources::Settings>().scheme;
-        plugin.add_systems(&mut self.schedule, scheme);
-        self.initialize_schedule()
+    /// Adds a feature to the simulation (see [`MpmPlugin`]): sets it up
+    /// in the world (its resources, the state checkpoints carry, its CSV
+    /// records), then adds its systems to the step; like
+    /// [`Simulation::add_systems`], an ambiguous addition is reported here.
+    /// Add plugins before the first step and before restoring a checkpoint.
+    pub fn add_plugin(&mut self, plugin: &dyn MpmPlugin) -> Result<(), PluginError> {
+        self.build_plugin(plugin)?;
+        plugin.add_systems(&mut self.schedule, self.scene.settings.scheme);
+        Ok(self.initialize_schedule()?)
     }
 
     fn initialize_schedule(&mut self) -> Result<(), StepError> {

@@ -112,8 +112,9 @@ impl MpmSystems {
     }
 }
 
-/// A schedule with the sets chained in the order of `scheme`, the ordered
-/// steps inside them, and the systems of [`DEFAULT_PLUGINS`].
+/// A schedule with the sets chained in the order of `scheme` and the
+/// ordered steps inside them; the features' plugins add their systems
+/// (see [`crate::plugins`]).
 pub fn build_schedule(scheme: UpdateScheme) -> Schedule {
     let mut schedule = Schedule::new(MpmSchedule);
     schedule.set_executor(SingleThreadedExecutor::new());
@@ -151,28 +152,8 @@ pub fn build_schedule(scheme: UpdateScheme) -> Schedule {
             .chain()
             .in_set(MpmSystems::Diagnostics),
     );
-    for plugin in DEFAULT_PLUGINS {
-        plugin.add_systems(&mut schedule, scheme);
-    }
     schedule
 }
-
-/// A feature of the step: the systems it adds, each in its set (see
-/// [`MpmSystems`], and within a set shared by several features its ordered
-/// step: [`ContactStep`], [`ContactTransferStep`], [`DiagnosticsStep`]).
-pub trait MpmPlugin: Sync {
-    /// Adds the feature's systems to `schedule`, built for `scheme`.
-    fn add_systems(&self, schedule: &mut Schedule, scheme: UpdateScheme);
-}
-
-/// The engine's features, in the order their systems are added.
-pub const DEFAULT_PLUGINS: [&dyn MpmPlugin; 5] = [
-    &CorePlugin,
-    &RigidBlocksPlugin,
-    &BodyContactPlugin,
-    &StagesPlugin,
-    &RecordsPlugin,
-];
 
 /// The ordered steps of [`MpmSystems::Contact`].
 #[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -214,77 +195,4 @@ pub enum DiagnosticsStep {
     Blocks,
     /// The body pairs' record.
     BodyPairs,
-}
-
-/// The material point method itself: grid reset, boundary conditions,
-/// particle-to-grid, stress update, nodal solve, grid-to-particle, the
-/// finiteness check and the clock.
-pub struct CorePlugin;
-
-impl MpmPlugin for CorePlugin {
-    fn add_systems(&self, schedule: &mut Schedule, scheme: UpdateScheme) {
-        schedule.add_systems((
-            reset_grid_layers.in_set(MpmSystems::GridReset),
-            rebuild_node_constraints.in_set(MpmSystems::Boundary),
-            particle_to_grid.in_set(MpmSystems::ParticleToGrid),
-            update_stress(scheme).in_set(MpmSystems::StressUpdate),
-            solve_nodal_momentum.in_set(MpmSystems::NodalSolve),
-            grid_to_particle.in_set(MpmSystems::GridToParticle),
-            check_finite.in_set(DiagnosticsStep::CheckFinite),
-            advance_clock.in_set(DiagnosticsStep::Clock),
-        ));
-    }
-}
-
-/// Rigid blocks and their DEM contacts with the points (section 3.2):
-/// neighbour lists, contact forces, their transfer, the blocks' motion,
-/// the contacts' work and the blocks' record.
-pub struct RigidBlocksPlugin;
-
-impl MpmPlugin for RigidBlocksPlugin {
-    fn add_systems(&self, schedule: &mut Schedule, _: UpdateScheme) {
-        schedule.add_systems((
-            rebuild_neighbour_lists.in_set(MpmSystems::Neighbours),
-            compute_rigid_contacts.in_set(ContactStep::Blocks),
-            transfer_contact_forces.in_set(ContactTransferStep::Forces),
-            move_rigid_blocks.in_set(MpmSystems::RigidBodies),
-            account_contact_work.in_set(DiagnosticsStep::ContactWork),
-            record_blocks.in_set(DiagnosticsStep::Blocks),
-        ));
-    }
-}
-
-/// Contacts between bodies (section 3.3) and the body pairs' record.
-pub struct BodyContactPlugin;
-
-impl MpmPlugin for BodyContactPlugin {
-    fn add_systems(&self, schedule: &mut Schedule, _: UpdateScheme) {
-        schedule.add_systems((
-            compute_body_contacts.in_set(ContactStep::Bodies),
-            record_body_pairs.in_set(DiagnosticsStep::BodyPairs),
-        ));
-    }
-}
-
-/// Stages and their surface loads: the loads, their work, and the stages'
-/// end conditions.
-pub struct StagesPlugin;
-
-impl MpmPlugin for StagesPlugin {
-    fn add_systems(&self, schedule: &mut Schedule, _: UpdateScheme) {
-        schedule.add_systems((
-            apply_surface_loads.in_set(ContactTransferStep::SurfaceLoads),
-            account_load_work.in_set(DiagnosticsStep::LoadWork),
-            advance_stages.in_set(DiagnosticsStep::Stages),
-        ));
-    }
-}
-
-/// The probes' and energies' record.
-pub struct RecordsPlugin;
-
-impl MpmPlugin for RecordsPlugin {
-    fn add_systems(&self, schedule: &mut Schedule, _: UpdateScheme) {
-        schedule.add_systems(record_probes_and_energy.in_set(DiagnosticsStep::Energy));
-    }
 }

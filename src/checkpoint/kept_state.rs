@@ -1,10 +1,14 @@
-//! State that user systems keep of their own, carried by checkpoints once
-//! it is registered by name, so a resumed run with user systems is still
-//! bit-identical: resources (a load controller's integral, a counter;
-//! [`crate::Simulation::keep_in_checkpoints`]) and components on the
-//! engine's bodies and blocks (a body's own per-point field, a block's
-//! controller; [`crate::Simulation::keep_components_in_checkpoints`]).
+//! The registry of the state that checkpoints carry, by name: what each
+//! feature of the engine keeps (registered by its plugin, see
+//! [`crate::plugins::PluginSetup`]) and what user systems keep of their
+//! own, so a resumed run is bit-identical: resources (a record, a load
+//! controller's integral; [`crate::Simulation::keep_in_checkpoints`]) and
+//! components on the engine's bodies and blocks (a body's own per-point
+//! field, a block's controller;
+//! [`crate::Simulation::keep_components_in_checkpoints`]).
 
+use crate::math::Real;
+use bevy_ecs::component::Mutable;
 use bevy_ecs::prelude::*;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
@@ -49,29 +53,90 @@ struct Kept {
     decode: Decode,
 }
 
-/// The user state that checkpoints carry, by name, in the order it was
-/// registered.
+/// A resource that the scene's spawn builds and whose changing part
+/// checkpoints carry: restoring puts that part back into the resource the
+/// rebuilt world already holds (a record keeps the room reserved for the
+/// whole run, so recording never allocates inside a step).
+pub trait Checkpointed: Resource + Component<Mutability = Mutable> {
+    /// The part a checkpoint stores.
+    type Stored: Serialize + DeserializeOwned + 'static;
+
+    /// The part to store, as it is now.
+    fn stored(&self) -> Self::Stored;
+
+    /// Puts a stored part back.
+    fn restore(&mut self, stored: Self::Stored);
+}
+
+/// A record of samples in time whose checkpoint may hold one sample too
+/// many: the one a run takes at its last step, off its sampling interval,
+/// which a run that goes on past that step does not take.
+pub trait TimeRecord: Checkpointed {
+    /// Forgets the samples taken at `time` or later.
+    fn forget_from(&mut self, time: Real);
+}
+
+/// The state that checkpoints carry, by name, in the order it was
+/// registered, with what restoring it then does.
 #[derive(Clone, Default)]
 pub struct KeptState {
     kept: Vec<Kept>,
+    /// The time records, to forget a sample a run that never stopped
+    /// would not have taken.
+    records: Vec<fn(&mut World, Real)>,
+    /// What features do once the whole state is back.
+    after_restore: Vec<fn(&mut World)>,
 }
 
 /// One registered type stored in a checkpoint: its name and its encoding.
 pub type StoredState = (String, Stored);
 
 impl KeptState {
-    /// Registers the resource type `R` under `name`, replacing an earlier
-    /// registration of that name. Register user resources only: the
-    /// engine's own (clock, settings, records) are restored by the
-    /// checkpoint itself, and one registered too could be overwritten by
-    /// either copy.
+    /// Registers the resource type `R` under `name`, stored whole and
+    /// inserted whole on restoring, replacing an earlier registration of
+    /// that name.
     pub fn keep_resource<R: Resource + Serialize + DeserializeOwned>(&mut self, name: &str) {
         self.register(name, encode_resource::<R>, decode_resource::<R>);
     }
 
+    /// Registers the part of the resource `R` that it stores (see
+    /// [`Checkpointed`]) under `name`, replacing an earlier registration of
+    /// that name.
+    pub fn keep_checkpointed<R: Checkpointed>(&mut self, name: &str) {
+        self.register(name, encode_checkpointed::<R>, decode_checkpointed::<R>);
+    }
+
+    /// Registers the time record `R` under `name`, as
+    /// [`KeptState::keep_checkpointed`], and forgets its samples from a
+    /// resumed run that a run that never stopped would not have.
+    pub fn keep_record<R: TimeRecord>(&mut self, name: &str) {
+        self.keep_checkpointed::<R>(name);
+        self.records.push(forget_from::<R>);
+    }
+
+    /// Adds `hook`, run once the whole state of a checkpoint is restored
+    /// (to rebuild what a feature derives from it).
+    pub fn after_restore(&mut self, hook: fn(&mut World)) {
+        self.after_restore.push(hook);
+    }
+
+    /// Runs the hooks of [`KeptState::after_restore`].
+    pub(crate) fn run_after_restore(&self, world: &mut World) {
+        for hook in &self.after_restore {
+            hook(world);
+        }
+    }
+
+    /// Forgets the samples of every time record taken at `time` or later.
+    pub(crate) fn forget_from(&self, world: &mut World, time: Real) {
+        for forget in &self.records {
+            forget(world, time);
+        }
+    }
+
     /// Registers the component type `C` under `name`, kept on every body
     /// and block that has it, replacing an earlier registration of that
-    /// name. Register user components only.
+    /// name. Register components of bodies and blocks only.
     pub fn keep_component<C: Component + Serialize + DeserializeOwned>(&mut self, name: &str) {
         self.register(name, encode_component::<C>, decode_component::<C>);
     }
@@ -94,8 +159,8 @@ impl KeptState {
         self.kept
             .iter()
             .map(|k| {
-                let stored = (k.encode)(world, holders)
-                    .map_err(|e| format!("user state '{}': {e}", k.name))?;
+                let stored =
+                    (k.encode)(world, holders).map_err(|e| format!("state '{}': {e}", k.name))?;
                 Ok((k.name.clone(), stored))
             })
             .collect()
@@ -119,10 +184,20 @@ impl KeptState {
         let registered_names: Vec<&str> = registered.iter().map(|k| k.name.as_str()).collect();
         let stored_names: Vec<&str> = stored.iter().map(|(name, _)| name.as_str()).collect();
         if registered_names != stored_names {
+            let not_in = |names: &[&str], other: &[&str]| -> Vec<String> {
+                names
+                    .iter()
+                    .filter(|n| !other.contains(n))
+                    .map(|n| n.to_string())
+                    .collect()
+            };
             return Err(format!(
-                "it holds the user state {stored_names:?} where this run keeps \
-                 {registered_names:?} (register it with Simulation::keep_in_checkpoints or \
-                 keep_components_in_checkpoints before restoring)"
+                "its user state differs from this run's: it holds {:?} that this run does not \
+                 keep, and lacks {:?} that it keeps (register state with \
+                 Simulation::keep_in_checkpoints or keep_components_in_checkpoints, or add \
+                 its plugin, before restoring)",
+                not_in(&stored_names, &registered_names),
+                not_in(&registered_names, &stored_names),
             ));
         }
         let inserts = registered
@@ -132,16 +207,16 @@ impl KeptState {
                 if let Stored::Components(values) = stored {
                     if let Some((holder, _)) = values.iter().find(|(h, _)| !holders.contains(h)) {
                         return Err(format!(
-                            "user state '{name}' is on {holder:?}, which the checkpoint does not hold"
+                            "state '{name}' is on {holder:?}, which the checkpoint does not hold"
                         ));
                     }
                     if values.windows(2).any(|pair| pair[0].0 >= pair[1].0) {
                         return Err(format!(
-                            "user state '{name}' is stored twice on one body or block, or out of order"
+                            "state '{name}' is stored twice on one body or block, or out of order"
                         ));
                     }
                 }
-                (kept.decode)(stored).map_err(|e| format!("user state '{name}': {e}"))
+                (kept.decode)(stored).map_err(|e| format!("state '{name}': {e}"))
             })
             .collect::<Result<Vec<Insert>, String>>()?;
         Ok(DecodedState { inserts })
@@ -192,6 +267,27 @@ fn decode_resource<R: Resource + DeserializeOwned>(stored: &Stored) -> Result<In
     Ok(Box::new(move |world: &mut World, _: &Holders| {
         world.insert_resource(resource);
     }))
+}
+
+fn encode_checkpointed<R: Checkpointed>(world: &World, _: &Holders) -> Result<Stored, String> {
+    let resource = world.get_resource::<R>().ok_or("it is not in the world")?;
+    let bytes = postcard::to_allocvec(&resource.stored()).map_err(|e| e.to_string())?;
+    Ok(Stored::Resource(bytes))
+}
+
+fn decode_checkpointed<R: Checkpointed>(stored: &Stored) -> Result<Insert, String> {
+    let Stored::Resource(bytes) = stored else {
+        return Err("it was stored as a component, and is kept as a resource".into());
+    };
+    let part: R::Stored = decode_exactly(bytes)?;
+    Ok(Box::new(move |world: &mut World, _: &Holders| {
+        // The registering feature built the resource with the world.
+        world.resource_mut::<R>().restore(part);
+    }))
+}
+
+fn forget_from<R: TimeRecord>(world: &mut World, time: Real) {
+    world.resource_mut::<R>().forget_from(time);
 }
 
 fn encode_component<C: Component + Serialize>(

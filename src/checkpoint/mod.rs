@@ -2,22 +2,23 @@
 //! long run can be resumed after a stop, or carried on to a later end
 //! time, and continue bit-identically to a run that never stopped.
 //!
-//! A checkpoint holds what the steps change: every body's points (and the
-//! energy damping has taken from it), every
-//! block present (pose, velocity, reaction, neighbour list, contacts with
-//! their tangential springs), the body–body and block–block springs, the
-//! settings, gravity and grid edges as the stages left them, where the run
-//! is in its stages, the clock and every record (probes, energy, blocks,
-//! body pairs, stages) that the outputs are written from. What the scene
-//! fixes (shapes, materials, laws, the grid) is rebuilt from the scene, so
-//! a checkpoint resumes only the scene it was written for: its name,
-//! `time.end` and `output` may change, nothing else. Scratch buffers and
-//! the layers' node windows are not kept: they do not change the results.
-//! State that user systems keep, in resources or in components on the
-//! bodies and blocks, is carried once registered
+//! A checkpoint holds what the steps change: the clock, every body's
+//! points (and the energy damping has taken from it), every block present
+//! (pose, velocity, reaction, neighbour list, contacts with their
+//! tangential springs), and the state that the features and user systems
+//! registered ([`KeptState`]): the settings, gravity and grid edges as the
+//! stages left them, the springs between bodies and between blocks, where
+//! the run is in its stages, and every record the outputs are written
+//! from. What the scene fixes (shapes, materials, laws, the grid) is
+//! rebuilt from the scene, so a checkpoint resumes only the scene it was
+//! written for: its name, `time.end` and `output` may change, nothing
+//! else. Scratch buffers and the layers' node windows are not kept: they
+//! do not change the results. State that user systems keep, in resources
+//! or in components on the bodies and blocks, is carried once registered
 //! ([`crate::Simulation::keep_in_checkpoints`],
-//! [`crate::Simulation::keep_components_in_checkpoints`]); components on
-//! entities of their own are not.
+//! [`crate::Simulation::keep_components_in_checkpoints`], or a plugin's
+//! [`crate::plugins::PluginSetup`]); components on entities of their own
+//! are not.
 //!
 //! The file is binary: eight magic bytes, the layout's number (`u32`,
 //! little-endian), the state's length in bytes (`u64`) and its CRC-32
@@ -33,15 +34,11 @@ use crate::components::{
 mod kept_state;
 mod state_hash;
 
-pub use kept_state::{Holder, KeptState, StoredState};
+pub use kept_state::{Checkpointed, Holder, KeptState, StoredState, TimeRecord};
 pub use state_hash::StateHasher;
 
 use crate::math::Real;
-use crate::resources::{
-    BlockContactHistory, BlockLog, BodyContacts, BodyPairContact, BodyPairLog, Clock, ContactWork,
-    EdgeConditions, EnergyLog, Gravity, Grid, LoadWork, ProbeSample, Probes, Settings,
-    StageEndReason, StageLog, StagePlan, StageProgress,
-};
+use crate::resources::{Clock, Probes, StagePlan};
 use crate::scene::{OutputSpec, Scene, SceneError, Shape};
 use bevy_ecs::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -86,8 +83,8 @@ fn checked_payload(stored: &[u8]) -> Result<&[u8], String> {
 /// settings' geometry and the contacts' tangential spring energy; 12: the
 /// surface loads' and the blocks' work; 13: the points' inelastic work;
 /// 14: the named schemes, the position update optional; 15: the state's
-/// length and checksum.)
-const FORMAT: u32 = 15;
+/// length and checksum; 16: the features' state kept by name.)
+const FORMAT: u32 = 16;
 
 /// Why a checkpoint could not be written or resumed.
 #[derive(Debug, thiserror::Error)]
@@ -152,9 +149,6 @@ pub enum CheckpointError {
 struct RunState {
     scene: u64,
     step: u64,
-    settings: Settings,
-    gravity: Gravity,
-    edges: EdgeConditions,
     /// Every body in scene order: its entity (bodies are spawned first and
     /// never removed, so a rebuilt world gives them the same entities,
     /// which the neighbour lists and loads refer to), its points and how
@@ -163,24 +157,12 @@ struct RunState {
     bodies: Vec<(Entity, MaterialPoints, StepTravel, DampedEnergy)>,
     /// The blocks present, in scene order.
     blocks: Vec<BlockState>,
-    block_springs: BlockContactHistory,
-    /// This step's and the previous step's body–body contacts.
-    body_contacts: [Vec<BodyPairContact>; 2],
-    contact_work: ContactWork,
-    /// The surface loads' work so far (`LoadWork::work`).
-    load_work: Real,
-    probe_samples: Vec<ProbeSample>,
     /// The steps between samples of the run that wrote the checkpoint: a
     /// sample at its step off that interval was taken because the run
     /// ended there.
-    probe_every: u64,
-    energy: EnergyLog,
-    stage_log: StageLog,
-    block_log: BlockLog,
-    body_pairs: BodyPairLog,
-    stages: Option<StageProgress>,
-    /// The user state registered to be kept, by name.
-    user: Vec<StoredState>,
+    sample_every: u64,
+    /// The state the features and user systems registered, by name.
+    kept: Vec<StoredState>,
 }
 
 /// One block's changing state.
@@ -225,13 +207,13 @@ pub fn write_checkpoint(
     path: &Path,
 ) -> Result<(), CheckpointError> {
     let holders = holders(world);
-    let user = kept
+    let stored = kept
         .save(world, &holders)
         .map_err(|detail| CheckpointError::Encode {
             path: path.to_path_buf(),
             detail,
         })?;
-    let state = capture(world, fingerprint, user);
+    let state = capture(world, fingerprint, stored);
     let payload = postcard::to_stdvec(&state).map_err(|e| CheckpointError::Encode {
         path: path.to_path_buf(),
         detail: e.to_string(),
@@ -316,10 +298,10 @@ pub fn restore_checkpoint(
     {
         return Err(format_error("its bodies are not the scene's".into()));
     }
-    apply(world, scene, state, kept, &bodies).map_err(format_error)
+    apply(world, scene, state, kept).map_err(format_error)
 }
 
-fn capture(world: &mut World, fingerprint: u64, user: Vec<StoredState>) -> RunState {
+fn capture(world: &mut World, fingerprint: u64, kept: Vec<StoredState>) -> RunState {
     let bodies = bodies_in_scene_order(world)
         .into_iter()
         .filter_map(|e| {
@@ -354,32 +336,13 @@ fn capture(world: &mut World, fingerprint: u64, user: Vec<StoredState>) -> RunSt
         )
         .collect();
     blocks.sort_unstable_by_key(|b| b.index);
-    let body_contacts = world.resource::<BodyContacts>();
     RunState {
         scene: fingerprint,
         step: world.resource::<Clock>().step,
-        settings: *world.resource::<Settings>(),
-        gravity: *world.resource::<Gravity>(),
-        edges: world.resource::<Grid>().edges,
         bodies,
         blocks,
-        block_springs: world.resource::<BlockContactHistory>().clone(),
-        body_contacts: [
-            body_contacts.current.clone(),
-            body_contacts.previous.clone(),
-        ],
-        contact_work: *world.resource::<ContactWork>(),
-        load_work: world.resource::<LoadWork>().work,
-        probe_samples: world.resource::<Probes>().samples.clone(),
-        probe_every: world.resource::<Probes>().every,
-        energy: world.resource::<EnergyLog>().clone(),
-        stage_log: world.resource::<StageLog>().clone(),
-        block_log: world.resource::<BlockLog>().clone(),
-        body_pairs: world.resource::<BodyPairLog>().clone(),
-        stages: world
-            .get_resource::<StagePlan>()
-            .map(|plan| plan.progress.clone()),
-        user,
+        sample_every: world.resource::<Probes>().every,
+        kept,
     }
 }
 
@@ -388,74 +351,30 @@ fn apply(
     scene: &Scene,
     state: RunState,
     kept: &KeptState,
-    bodies: &[Entity],
 ) -> Result<(), String> {
     // First what can be refused without having changed the world: the
-    // stages, and the user state (all decoded before any is put in, once
-    // the blocks are). A block the scene lacks is found after the points
-    // are in: a world whose restore failed is to be discarded.
-    let planned = world.contains_resource::<StagePlan>();
-    if planned != state.stages.is_some() {
-        return Err("its stages are not the scene's".into());
-    }
+    // kept state, all decoded before any is put in, once the blocks are.
+    // A block the scene lacks is found after the points are in: a world
+    // whose restore failed is to be discarded.
     let stored_holders: Vec<Holder> = (0..state.bodies.len() as u32)
         .map(Holder::Body)
         .chain(state.blocks.iter().map(|b| Holder::Block(b.index)))
         .collect();
-    let user = kept.decode(state.user, &stored_holders)?;
+    let decoded = kept.decode(state.kept, &stored_holders)?;
     {
         let mut clock = world.resource_mut::<Clock>();
         clock.step = state.step;
         clock.time = state.step as Real * clock.dt;
     }
-    *world.resource_mut::<Settings>() = state.settings;
-    *world.resource_mut::<Gravity>() = state.gravity;
-    world.resource_mut::<Grid>().edges = state.edges;
+    // The bodies were checked to be the world's, in order.
     for (entity, points, travel, damped) in state.bodies {
         world.entity_mut(entity).insert((points, travel, damped));
     }
     restore_blocks(world, scene, state.blocks)?;
     let holders = holders(world);
-    user.insert(world, &holders);
-    *world.resource_mut::<BlockContactHistory>() = state.block_springs;
-    {
-        let mut contacts = world.resource_mut::<BodyContacts>();
-        let [current, previous] = state.body_contacts;
-        contacts.current = current;
-        contacts.previous = previous;
-    }
-    *world.resource_mut::<ContactWork>() = state.contact_work;
-    *world.resource_mut::<LoadWork>() = LoadWork::with_work(state.load_work);
-    // The records were sized for the whole run when the scene was spawned
-    // (recording never allocates in a step): refill them in place.
-    refill(
-        &mut world.resource_mut::<Probes>().samples,
-        state.probe_samples,
-    );
-    refill(
-        &mut world.resource_mut::<EnergyLog>().samples,
-        state.energy.samples,
-    );
-    *world.resource_mut::<StageLog>() = state.stage_log;
-    {
-        let mut log = world.resource_mut::<BlockLog>();
-        refill(&mut log.samples, state.block_log.samples);
-        refill(&mut log.parts, state.block_log.parts);
-    }
-    refill(
-        &mut world.resource_mut::<BodyPairLog>().samples,
-        state.body_pairs.samples,
-    );
-    if let Some(progress) = state.stages
-        && let Some(mut plan) = world.remove_resource::<StagePlan>()
-    {
-        plan.bodies = bodies.to_vec();
-        plan.dynamic_blocks = crate::systems::dynamic_blocks_in_scene_order(world);
-        plan.progress = progress;
-        carry_on_a_stage_cut_short(world, &mut plan.progress);
-        world.insert_resource(plan);
-    }
-    drop_the_end_sample(world, state.probe_every);
+    decoded.insert(world, &holders);
+    kept.run_after_restore(world);
+    drop_the_end_sample(world, kept, state.sample_every);
     Ok(())
 }
 
@@ -463,54 +382,14 @@ fn apply(
 /// steps). If the resumed run goes on past that step and its own interval
 /// does not sample it either, a run of the resumed scene that never stopped
 /// has no sample there: it is taken back from every record.
-fn drop_the_end_sample(world: &mut World, stored: u64) {
+fn drop_the_end_sample(world: &mut World, kept: &KeptState, stored: u64) {
     let clock = *world.resource::<Clock>();
     let every = world.resource::<Probes>().every.max(1);
     let sampled_as_the_end = !clock.step.is_multiple_of(stored.max(1));
     if clock.finished() || !sampled_as_the_end || clock.step.is_multiple_of(every) {
         return;
     }
-    let before = clock.time - 0.5 * clock.dt;
-    world
-        .resource_mut::<Probes>()
-        .samples
-        .retain(|s| s.time < before);
-    world
-        .resource_mut::<EnergyLog>()
-        .samples
-        .retain(|s| s.time < before);
-    let mut blocks = world.resource_mut::<BlockLog>();
-    blocks.samples.retain(|s| s.time < before);
-    blocks.parts.retain(|s| s.time < before);
-    world
-        .resource_mut::<BodyPairLog>()
-        .samples
-        .retain(|s| s.time < before);
-}
-
-/// A stage still running when the run reached its `time.end` was ended
-/// there (`SceneEnd`, with a warning). If the resumed scene ends later, the
-/// stage goes on as in a run that was given the later end from the start:
-/// that record and its warning are taken back. A plan that finished
-/// otherwise stays finished, and the run with it.
-fn carry_on_a_stage_cut_short(world: &mut World, progress: &mut StageProgress) {
-    if !progress.finished {
-        return;
-    }
-    // The clock holds the checkpoint's step and the resumed scene's end.
-    let clock = *world.resource::<Clock>();
-    let mut log = world.resource_mut::<StageLog>();
-    let cut_short = log
-        .records
-        .last()
-        .is_some_and(|r| r.reason == StageEndReason::SceneEnd);
-    if cut_short && !clock.finished() {
-        log.records.pop();
-        log.warnings.pop();
-        progress.finished = false;
-    } else {
-        world.resource_mut::<Clock>().end = clock.time;
-    }
+    kept.forget_from(world, clock.time - 0.5 * clock.dt);
 }
 
 /// The world's bodies and blocks, each named by its index in the scene.
@@ -580,9 +459,4 @@ fn restore_blocks(world: &mut World, scene: &Scene, blocks: Vec<BlockState>) -> 
         ));
     }
     Ok(())
-}
-
-fn refill<T>(records: &mut Vec<T>, stored: Vec<T>) {
-    records.clear();
-    records.extend(stored);
 }

@@ -2,6 +2,7 @@
 
 use crate::math::Real;
 use crate::resources::{BlockLog, BodyPairLog, EnergyLog, Probes, StageLog};
+use bevy_ecs::prelude::{Resource, World};
 use std::borrow::Cow;
 use std::io::Write;
 use std::path::Path;
@@ -45,6 +46,51 @@ pub trait CsvSeries {
     /// Writes row `k` (with its line break); `bodies` are the bodies' names
     /// in scene order.
     fn write_row(&self, k: usize, bodies: &[String], out: &mut dyn Write) -> std::io::Result<()>;
+}
+
+/// A [`CsvSeries`] behind a reference, whatever its type.
+pub(crate) trait SeriesRows {
+    /// The header line.
+    fn header(&self) -> &'static str;
+    /// How many rows the record holds.
+    fn rows(&self) -> usize;
+    /// Writes row `k`.
+    fn write_row(&self, k: usize, bodies: &[String], out: &mut dyn Write) -> std::io::Result<()>;
+}
+
+impl<S: CsvSeries> SeriesRows for S {
+    fn header(&self) -> &'static str {
+        S::HEADER
+    }
+    fn rows(&self) -> usize {
+        CsvSeries::rows(self)
+    }
+    fn write_row(&self, k: usize, bodies: &[String], out: &mut dyn Write) -> std::io::Result<()> {
+        CsvSeries::write_row(self, k, bodies, out)
+    }
+}
+
+/// A record in the world that the outputs write as a CSV file.
+#[derive(Clone, Copy)]
+pub(crate) struct CsvRecord {
+    /// The file's name in the output folder.
+    pub file: &'static str,
+    /// The record in a world.
+    pub series: for<'w> fn(&'w World) -> &'w dyn SeriesRows,
+}
+
+impl CsvRecord {
+    /// The resource `R`, written as `file`.
+    pub fn of<R: Resource + CsvSeries>(file: &'static str) -> Self {
+        Self {
+            file,
+            series: series_of::<R>,
+        }
+    }
+}
+
+fn series_of<R: Resource + CsvSeries>(world: &World) -> &dyn SeriesRows {
+    world.resource::<R>()
 }
 
 /// Writes the whole `series` to `path`.

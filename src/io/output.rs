@@ -1,7 +1,7 @@
 //! The output folder of a run: VTK frames, the ParaView collections and the
 //! CSV series during the run; PNG plots at the end.
 
-use super::csv::{self, CsvSeries};
+use super::csv::{self, CsvRecord};
 use super::manifest::OutputManifest;
 use super::plot::{Series, SeriesStyle, plot_points, plot_series};
 use super::vtk::{
@@ -10,7 +10,7 @@ use super::vtk::{
 use crate::components::{BlockId, BlockOutline, BodyIndex, MaterialPoints, Pose};
 use crate::files::{located, partial_path};
 use crate::math::{DVec2, Real};
-use crate::resources::{BlockLog, BodyPairLog, EnergyLog, Grid, Probes, StageLog};
+use crate::resources::{BlockLog, EnergyLog, Grid, Probes};
 use crate::rules::file_safe;
 use crate::scene::{CurveSpec, PROBE_PLOT_PREFIX, Scene};
 use crate::simulation::Simulation;
@@ -50,81 +50,9 @@ pub struct RunOutput {
     bodies: Vec<String>,
 }
 
-/// A record written as CSV while the run goes.
-#[derive(Clone, Copy, Debug)]
-enum Record {
-    Probes,
-    Energy,
-    Blocks,
-    BodyPairs,
-    Stages,
-}
-
-impl Record {
-    const ALL: [Self; 5] = [
-        Self::Probes,
-        Self::Energy,
-        Self::Blocks,
-        Self::BodyPairs,
-        Self::Stages,
-    ];
-
-    /// The file's name in the output folder.
-    fn file(self) -> &'static str {
-        match self {
-            Self::Probes => "probes.csv",
-            Self::Energy => "energy.csv",
-            Self::Blocks => "blocks.csv",
-            Self::BodyPairs => "body_contacts.csv",
-            Self::Stages => "stages.csv",
-        }
-    }
-
-    /// Whether the run writes this record: probes and energies always,
-    /// the others when the scene has blocks, body contact laws or stages.
-    fn kept(self, scene: &Scene) -> bool {
-        match self {
-            Self::Probes | Self::Energy => true,
-            Self::Blocks => !scene.blocks.is_empty(),
-            Self::BodyPairs => !scene.body_contacts.is_empty(),
-            Self::Stages => !scene.stages.is_empty(),
-        }
-    }
-
-    /// Applies `f` to the record in `world`, as a CSV series.
-    fn with<T>(self, world: &bevy_ecs::world::World, f: impl FnOnce(&dyn SeriesRows) -> T) -> T {
-        match self {
-            Self::Probes => f(world.resource::<Probes>()),
-            Self::Energy => f(world.resource::<EnergyLog>()),
-            Self::Blocks => f(world.resource::<BlockLog>()),
-            Self::BodyPairs => f(world.resource::<BodyPairLog>()),
-            Self::Stages => f(world.resource::<StageLog>()),
-        }
-    }
-}
-
-/// A [`CsvSeries`] behind a reference, whatever its type.
-trait SeriesRows {
-    fn header(&self) -> &'static str;
-    fn rows(&self) -> usize;
-    fn write_row(&self, k: usize, bodies: &[String], out: &mut dyn Write) -> std::io::Result<()>;
-}
-
-impl<S: CsvSeries> SeriesRows for S {
-    fn header(&self) -> &'static str {
-        S::HEADER
-    }
-    fn rows(&self) -> usize {
-        CsvSeries::rows(self)
-    }
-    fn write_row(&self, k: usize, bodies: &[String], out: &mut dyn Write) -> std::io::Result<()> {
-        CsvSeries::write_row(self, k, bodies, out)
-    }
-}
-
 /// One CSV series open for appending.
 struct SeriesFile {
-    record: Record,
+    record: CsvRecord,
     path: PathBuf,
     /// Rows written so far.
     written: usize,
@@ -144,21 +72,21 @@ impl SeriesFile {
             file,
             rows: buffer,
         } = self;
-        record
-            .with(world, |series| {
-                let rows = series.rows();
-                if rows <= *written {
-                    return Ok(());
-                }
-                buffer.clear();
-                for k in *written..rows {
-                    series.write_row(k, bodies, buffer)?;
-                }
-                file.write_all(buffer)?;
-                *written = rows;
-                Ok(())
-            })
-            .map_err(|e| located(path, e))
+        let series = (record.series)(world);
+        let mut append = || -> std::io::Result<()> {
+            let rows = series.rows();
+            if rows <= *written {
+                return Ok(());
+            }
+            buffer.clear();
+            for k in *written..rows {
+                series.write_row(k, bodies, buffer)?;
+            }
+            file.write_all(buffer)?;
+            *written = rows;
+            Ok(())
+        };
+        append().map_err(|e| located(path, e))
     }
 }
 
@@ -240,7 +168,7 @@ impl RunOutput {
             series: Vec::new(),
             bodies,
         };
-        for record in Record::ALL.into_iter().filter(|r| r.kept(scene)) {
+        for &record in sim.csv_records() {
             let file = output.open_series(record, sim.world(), false)?;
             output.series.push(file);
         }
@@ -311,7 +239,7 @@ impl RunOutput {
             bodies: scene.bodies.iter().map(|b| b.name.clone()).collect(),
         };
         // The series as the checkpoint holds them, then appended to.
-        for record in Record::ALL.into_iter().filter(|r| r.kept(scene)) {
+        for &record in sim.csv_records() {
             let file = output.open_series(record, sim.world(), true)?;
             output.series.push(file);
         }
@@ -338,29 +266,27 @@ impl RunOutput {
     /// a temporary name and renamed, then opened for appending.
     fn open_series(
         &mut self,
-        record: Record,
+        record: CsvRecord,
         world: &bevy_ecs::world::World,
         whole: bool,
     ) -> std::io::Result<SeriesFile> {
-        let path = self.folder.dir.join(record.file());
+        let path = self.folder.dir.join(record.file);
         let bodies = &self.bodies;
+        let series = (record.series)(world);
         let written = if whole {
-            self.folder.write_file(record.file(), |path| {
-                record.with(world, |series| {
-                    let mut out = BufWriter::new(File::create(path)?);
-                    writeln!(out, "{}", series.header())?;
-                    for k in 0..series.rows() {
-                        series.write_row(k, bodies, &mut out)?;
-                    }
-                    out.flush()
-                })
+            self.folder.write_file(record.file, |path| {
+                let mut out = BufWriter::new(File::create(path)?);
+                writeln!(out, "{}", series.header())?;
+                for k in 0..series.rows() {
+                    series.write_row(k, bodies, &mut out)?;
+                }
+                out.flush()
             })?;
-            record.with(world, |series| series.rows())
+            series.rows()
         } else {
-            self.folder.manifest.record(record.file())?;
+            self.folder.manifest.record(record.file)?;
             let mut out = File::create(&path).map_err(|e| located(&path, e))?;
-            writeln!(out, "{}", record.with(world, |series| series.header()))
-                .map_err(|e| located(&path, e))?;
+            writeln!(out, "{}", series.header()).map_err(|e| located(&path, e))?;
             0
         };
         let out = std::fs::OpenOptions::new()

@@ -1,5 +1,5 @@
-//! Scenes: the RON schema of a scenario, its validation, and spawning it
-//! into a bevy `World`.
+//! Scenes: the RON schema of a scenario, its validation, and spawning its
+//! bodies and blocks into a bevy `World`.
 //!
 //! Every struct denies unknown fields; every optional field documents its
 //! default and why. Units are SI; the model is plane strain with unit
@@ -26,10 +26,13 @@ pub use crate::resources::{
 };
 pub use crate::rules::{ParameterError, RuleError};
 pub use builder::SceneBuilder;
+pub(crate) use contact_stability::{body_contact_stability_warnings, undamped_contact_warning};
+pub(crate) use layout_warnings::{body_overlap_warnings, free_edge_warnings};
 pub use location::SourceLocation;
 pub use point_file::ListedPoint;
 pub use shapes::Shape;
-pub use spawn::spawn_scene;
+pub(crate) use spawn::spawn_scene;
+pub(crate) use step_warnings::off_step_warnings;
 pub use velocity_field::VelocityField;
 
 use crate::components::{BodyAcceleration, RegionConstraint, RigidVelocity};
@@ -111,6 +114,16 @@ pub struct GridSpec {
 }
 
 impl GridSpec {
+    /// The grid resource this spec describes.
+    pub fn grid(&self) -> crate::resources::Grid {
+        crate::resources::Grid {
+            origin: self.origin,
+            cell_size: self.cell_size,
+            cells: [self.cells.0, self.cells.1],
+            edges: self.edges,
+        }
+    }
+
     /// Upper-right corner (m).
     pub fn max(&self) -> DVec2 {
         self.origin + DVec2::new(self.cells.0 as Real, self.cells.1 as Real) * self.cell_size

@@ -1,0 +1,135 @@
+//! Contacts between bodies (section 3.3) and the body pairs' record,
+//! `body_contacts.csv`.
+
+use super::records::{refill, samples_in_run};
+use super::{MpmPlugin, PluginSetup};
+use crate::checkpoint::{Checkpointed, TimeRecord};
+use crate::components::{MaterialPoints, bodies_in_scene_order};
+use crate::math::Real;
+use crate::resources::{
+    BodyContacts, BodyPairContact, BodyPairLaw, BodyPairLog, BodyPairSample, Clock, PairSummary,
+    Probes, UpdateScheme,
+};
+use crate::scene::{Scene, SceneError, body_contact_stability_warnings, body_overlap_warnings};
+use crate::systems::{ContactStep, DiagnosticsStep, compute_body_contacts, record_body_pairs};
+use bevy_ecs::prelude::*;
+
+/// Body–body contact and its record.
+pub struct BodyContactPlugin;
+
+impl MpmPlugin for BodyContactPlugin {
+    fn build(&self, setup: &mut PluginSetup) -> Result<(), SceneError> {
+        let scene = setup.scene;
+        let laws = body_pair_laws(scene);
+        let bodies = bodies_in_scene_order(setup.world);
+        let warnings = layout_warnings(scene, setup.world, &bodies, &laws);
+        setup.warn_all(warnings);
+        let world = &mut *setup.world;
+        let samples = samples_in_run(world.resource::<Clock>(), world.resource::<Probes>().every);
+        // The first sample, at the start, has no contacts yet.
+        let mut log = BodyPairLog {
+            samples: Vec::with_capacity(samples * laws.len()),
+        };
+        log.samples.extend(laws.iter().map(|l| BodyPairSample {
+            time: 0.0,
+            a: l.a,
+            b: l.b,
+            summary: PairSummary::default(),
+        }));
+        world.insert_resource(log);
+        world.insert_resource(BodyContacts {
+            laws,
+            ..Default::default()
+        });
+        setup.keep_checkpointed::<BodyContacts>("body contacts");
+        if scene.body_contacts.is_empty() {
+            setup.keep_checkpointed::<BodyPairLog>("body pairs");
+        } else {
+            setup.record::<BodyPairLog>("body pairs", "body_contacts.csv");
+        }
+        Ok(())
+    }
+
+    fn add_systems(&self, schedule: &mut Schedule, _: UpdateScheme) {
+        schedule.add_systems((
+            compute_body_contacts.in_set(ContactStep::Bodies),
+            record_body_pairs.in_set(DiagnosticsStep::BodyPairs),
+        ));
+    }
+}
+
+/// This step's and the last step's contacts (the tangential springs carry
+/// over from one to the next); the laws are the scene's.
+impl Checkpointed for BodyContacts {
+    type Stored = [Vec<BodyPairContact>; 2];
+
+    fn stored(&self) -> Self::Stored {
+        [self.current.clone(), self.previous.clone()]
+    }
+
+    fn restore(&mut self, [current, previous]: Self::Stored) {
+        self.current = current;
+        self.previous = previous;
+    }
+}
+
+impl Checkpointed for BodyPairLog {
+    type Stored = Vec<BodyPairSample>;
+
+    fn stored(&self) -> Self::Stored {
+        self.samples.clone()
+    }
+
+    fn restore(&mut self, samples: Self::Stored) {
+        refill(&mut self.samples, samples);
+    }
+}
+
+impl TimeRecord for BodyPairLog {
+    fn forget_from(&mut self, time: Real) {
+        self.samples.retain(|s| s.time < time);
+    }
+}
+
+/// The contact law of every pair of bodies (a < b), expanded from the
+/// scene's laws between bodies or groups, sorted by pair.
+fn body_pair_laws(scene: &Scene) -> Vec<BodyPairLaw> {
+    let mut laws: Vec<BodyPairLaw> = Vec::new();
+    for spec in &scene.body_contacts {
+        let members = |name: &str| scene.contact_members(name).unwrap_or_default();
+        for i in members(&spec.between.0) {
+            for j in members(&spec.between.1) {
+                laws.push(BodyPairLaw {
+                    a: i.min(j) as u32,
+                    b: i.max(j) as u32,
+                    law: spec.law,
+                });
+            }
+        }
+    }
+    laws.sort_unstable_by_key(|l| (l.a, l.b));
+    laws
+}
+
+/// Warnings about where the bodies start: overlapping under a contact
+/// law, and body contact springs the time step cannot follow.
+fn layout_warnings(
+    scene: &Scene,
+    world: &World,
+    bodies: &[Entity],
+    laws: &[BodyPairLaw],
+) -> Vec<String> {
+    let placed: Vec<(&str, &MaterialPoints)> = scene
+        .bodies
+        .iter()
+        .zip(bodies)
+        .filter_map(|(spec, &e)| Some((spec.name.as_str(), world.get::<MaterialPoints>(e)?)))
+        .collect();
+    let mut warnings = body_overlap_warnings(&placed, laws);
+    warnings.extend(body_contact_stability_warnings(
+        scene.time.dt,
+        &placed,
+        laws,
+    ));
+    warnings
+}

@@ -1,0 +1,158 @@
+//! The material point method itself: the grid, the clock, the settings and
+//! gravity; grid reset, boundary conditions, particle-to-grid, stress
+//! update, nodal solve, grid-to-particle, the finiteness check and the
+//! clock.
+
+use super::{MpmPlugin, PluginSetup};
+use crate::checkpoint::Checkpointed;
+use crate::components::MaterialPoints;
+use crate::components::{GridLayer, RegionConstraint, RegionConstraints, bodies_in_scene_order};
+use crate::math::Real;
+use crate::resources::{
+    Clock, Diagnostics, EdgeConditions, Gravity, Grid, Settings, SharedLayers, UpdateScheme,
+};
+use crate::scene::{
+    Scene, SceneError, free_edge_warnings, off_step_warnings, undamped_contact_warning,
+};
+use crate::systems::{
+    DiagnosticsStep, MpmSystems, advance_clock, check_finite, grid_to_particle, particle_to_grid,
+    rebuild_node_constraints, reset_grid_layers, solve_nodal_momentum, update_stress,
+};
+use bevy_ecs::prelude::*;
+
+/// The core of the step (Algorithm 1 without its contacts).
+pub struct CorePlugin;
+
+impl MpmPlugin for CorePlugin {
+    fn build(&self, setup: &mut PluginSetup) -> Result<(), SceneError> {
+        let scene = setup.scene;
+        let grid = scene.grid.grid();
+        let clock = Clock {
+            step: 0,
+            time: 0.0,
+            dt: scene.time.dt,
+            end: scene.time.end,
+        };
+        setup.warn_all(time_step_warnings(scene, &clock, &grid));
+        let bodies = bodies_in_scene_order(setup.world);
+        setup.warn_all(free_edge_warnings_at_the_start(
+            scene,
+            setup.world,
+            &bodies,
+            &grid,
+        ));
+        setup.warn_all(undamped_contact_warning(scene));
+        let shared = share_layers(setup.world, &bodies, &scene.shared_layers());
+        let world = &mut *setup.world;
+        world.insert_resource(grid);
+        world.insert_resource(clock);
+        world.insert_resource(scene.settings);
+        world.insert_resource(Gravity(scene.gravity));
+        world.insert_resource(Diagnostics::default());
+        world.insert_resource(shared);
+        // Stages change the settings, gravity and the grid's edges.
+        setup.keep_resource::<Settings>("settings");
+        setup.keep_resource::<Gravity>("gravity");
+        setup.keep_checkpointed::<Grid>("grid edges");
+        Ok(())
+    }
+
+    fn add_systems(&self, schedule: &mut Schedule, scheme: UpdateScheme) {
+        schedule.add_systems((
+            reset_grid_layers.in_set(MpmSystems::GridReset),
+            rebuild_node_constraints.in_set(MpmSystems::Boundary),
+            particle_to_grid.in_set(MpmSystems::ParticleToGrid),
+            update_stress(scheme).in_set(MpmSystems::StressUpdate),
+            solve_nodal_momentum.in_set(MpmSystems::NodalSolve),
+            grid_to_particle.in_set(MpmSystems::GridToParticle),
+            check_finite.in_set(DiagnosticsStep::CheckFinite),
+            advance_clock.in_set(DiagnosticsStep::Clock),
+        ));
+    }
+}
+
+impl Checkpointed for Grid {
+    type Stored = EdgeConditions;
+
+    fn stored(&self) -> EdgeConditions {
+        self.edges
+    }
+
+    fn restore(&mut self, edges: EdgeConditions) {
+        self.edges = edges;
+    }
+}
+
+/// Warnings about the time step: off the end or an interval, and above a
+/// material's CFL limit on this grid.
+fn time_step_warnings(scene: &Scene, clock: &Clock, grid: &Grid) -> Vec<String> {
+    let mut warnings = off_step_warnings(scene, clock);
+    for material in &scene.materials {
+        let wave_speed = (material.model.as_model().p_wave_modulus() / material.density).sqrt();
+        let limit = grid.cell_size / wave_speed;
+        if clock.dt > limit {
+            warnings.push(format!(
+                "time.dt = {:e} s exceeds the CFL limit h / c = {limit:.4e} s of material '{}' (c = {wave_speed:.4e} m/s): the run will likely blow up",
+                clock.dt, material.name
+            ));
+        }
+    }
+    warnings
+}
+
+/// Warnings about bodies resting on a free edge that gravity does not pull
+/// them off, with the edges and gravity the run starts with: the first
+/// stage's, if it sets them.
+fn free_edge_warnings_at_the_start(
+    scene: &Scene,
+    world: &World,
+    bodies: &[Entity],
+    grid: &Grid,
+) -> Vec<String> {
+    let placed: Vec<(&str, &MaterialPoints)> = scene
+        .bodies
+        .iter()
+        .zip(bodies)
+        .filter_map(|(spec, &e)| Some((spec.name.as_str(), world.get::<MaterialPoints>(e)?)))
+        .collect();
+    let first = scene.stages.first();
+    let mut start = grid.clone();
+    start.edges = first
+        .and_then(|s| s.edges)
+        .map_or(start.edges, |c| c.apply(start.edges));
+    let gravity = first.and_then(|s| s.gravity).unwrap_or(scene.gravity);
+    free_edge_warnings(&start, gravity, &placed)
+}
+
+/// The contact groups' bodies: each member's layer gets the region
+/// constraints of the whole group and the group's smallest mass cutoff, so
+/// the shared copies stay equal.
+fn share_layers(world: &mut World, bodies: &[Entity], groups: &[Vec<usize>]) -> SharedLayers {
+    let groups: Vec<Vec<Entity>> = groups
+        .iter()
+        .map(|g| g.iter().map(|&i| bodies[i]).collect())
+        .collect();
+    for group in &groups {
+        let regions: Vec<RegionConstraint> = group
+            .iter()
+            .filter_map(|&e| world.get::<RegionConstraints>(e))
+            .flat_map(|r| r.0.iter().copied())
+            .collect();
+        let cutoff = group
+            .iter()
+            .filter_map(|&e| world.get::<GridLayer>(e))
+            .map(|l| l.mass_cutoff)
+            .fold(Real::INFINITY, Real::min);
+        for &member in group {
+            let mut entity = world.entity_mut(member);
+            entity.insert(RegionConstraints(regions.clone()));
+            if let Some(mut layer) = entity.get_mut::<GridLayer>() {
+                layer.mass_cutoff = cutoff;
+            }
+        }
+    }
+    SharedLayers {
+        groups,
+        ..SharedLayers::default()
+    }
+}

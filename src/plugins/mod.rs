@@ -1,0 +1,148 @@
+//! The engine's features as plugins. A plugin sets its feature up in one
+//! place: the resources it adds to a world spawned from a scene, the state
+//! of them that checkpoints carry, the records it writes as CSV, and its
+//! systems in the step. A user plugin does the same through
+//! [`crate::Simulation::add_plugin`].
+
+mod body_contact;
+mod core;
+mod records;
+mod rigid_blocks;
+mod stages;
+
+pub use body_contact::BodyContactPlugin;
+pub use core::CorePlugin;
+pub use records::RecordsPlugin;
+pub use rigid_blocks::RigidBlocksPlugin;
+pub use stages::StagesPlugin;
+
+use crate::checkpoint::{Checkpointed, KeptState, TimeRecord};
+use crate::components::BlockTemplate;
+use crate::io::csv::{CsvRecord, CsvSeries};
+use crate::resources::UpdateScheme;
+use crate::scene::{Scene, SceneError};
+use bevy_ecs::prelude::*;
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+
+/// A feature of the engine: what it adds to the world of a scene and to
+/// the step. Modelled on bevy's `Plugin`, over a [`World`] and the
+/// [`crate::systems::MpmSchedule`].
+pub trait MpmPlugin: Sync {
+    /// Sets the feature up in a world spawned from a scene (its bodies and
+    /// blocks are there, and the resources of the plugins built before):
+    /// inserts its resources, registers the state checkpoints carry and
+    /// the records the outputs write. The default does nothing.
+    fn build(&self, _setup: &mut PluginSetup) -> Result<(), SceneError> {
+        Ok(())
+    }
+
+    /// Adds the feature's systems to `schedule`, built for `scheme`, each
+    /// in its set (see [`crate::systems::MpmSystems`], and within a set
+    /// shared by several features its ordered step:
+    /// [`crate::systems::ContactStep`],
+    /// [`crate::systems::ContactTransferStep`],
+    /// [`crate::systems::DiagnosticsStep`]).
+    fn add_systems(&self, schedule: &mut Schedule, scheme: UpdateScheme);
+}
+
+/// The engine's features, in the order they are built (a plugin may use
+/// the resources of those before it; stages come last, as entering the
+/// first stage changes what the others set up).
+pub const DEFAULT_PLUGINS: [&dyn MpmPlugin; 5] = [
+    &CorePlugin,
+    &RecordsPlugin,
+    &RigidBlocksPlugin,
+    &BodyContactPlugin,
+    &StagesPlugin,
+];
+
+/// What a plugin sets its feature up with: the scene, the world spawned
+/// from it, and the registries of checkpointed state and recorded series.
+pub struct PluginSetup<'a> {
+    /// The scene the world was spawned from.
+    pub scene: &'a Scene,
+    /// The world: the scene's bodies and blocks, and the resources of the
+    /// plugins built so far.
+    pub world: &'a mut World,
+    kept: &'a mut KeptState,
+    records: &'a mut Vec<CsvRecord>,
+    warnings: &'a mut Vec<String>,
+    absent_blocks: &'a mut Vec<BlockTemplate>,
+}
+
+impl<'a> PluginSetup<'a> {
+    pub(crate) fn new(
+        scene: &'a Scene,
+        world: &'a mut World,
+        registries: &'a mut Registries,
+        absent_blocks: &'a mut Vec<BlockTemplate>,
+    ) -> Self {
+        Self {
+            scene,
+            world,
+            kept: &mut registries.kept,
+            records: &mut registries.records,
+            warnings: &mut registries.warnings,
+            absent_blocks,
+        }
+    }
+
+    /// Adds a warning for the user (shown by `mpdem check` and `run`).
+    pub fn warn(&mut self, warning: impl Into<String>) {
+        self.warnings.push(warning.into());
+    }
+
+    /// Adds warnings for the user.
+    pub fn warn_all(&mut self, warnings: impl IntoIterator<Item = String>) {
+        self.warnings.extend(warnings);
+    }
+
+    /// Makes checkpoints carry the resource `R` whole, under `name` (see
+    /// [`crate::Simulation::keep_in_checkpoints`]).
+    pub fn keep_resource<R: Resource + Serialize + DeserializeOwned>(&mut self, name: &str) {
+        self.kept.keep_resource::<R>(name);
+    }
+
+    /// Makes checkpoints carry the part of the resource `R` that it stores
+    /// (see [`Checkpointed`]), under `name`.
+    pub fn keep_checkpointed<R: Checkpointed>(&mut self, name: &str) {
+        self.kept.keep_checkpointed::<R>(name);
+    }
+
+    /// Makes the time record `R` a series of the run: checkpoints carry
+    /// it under `name`, and the outputs write it as the CSV file `file`,
+    /// appended to as the run records it (see [`CsvSeries`]).
+    pub fn record<R: TimeRecord + CsvSeries>(&mut self, name: &str, file: &'static str) {
+        self.kept.keep_record::<R>(name);
+        self.write_csv::<R>(file);
+    }
+
+    /// Makes the outputs write the resource `R` as the CSV file `file`,
+    /// appended to as the run adds rows (see [`CsvSeries`]). Checkpoints
+    /// carry it only if it is also kept.
+    pub fn write_csv<R: Resource + CsvSeries>(&mut self, file: &'static str) {
+        self.records.push(CsvRecord::of::<R>(file));
+    }
+
+    /// Adds `hook`, run once a checkpoint's whole state is restored, to
+    /// rebuild what the feature derives from it.
+    pub fn after_restore(&mut self, hook: fn(&mut World)) {
+        self.kept.after_restore(hook);
+    }
+
+    /// The blocks absent at the start, which stages add: taken by the
+    /// stages' plugin.
+    pub(crate) fn take_absent_blocks(&mut self) -> Vec<BlockTemplate> {
+        std::mem::take(self.absent_blocks)
+    }
+}
+
+/// What the plugins of a simulation registered: the state checkpoints
+/// carry, the CSV series the outputs write, and the warnings they raised.
+#[derive(Default)]
+pub(crate) struct Registries {
+    pub kept: KeptState,
+    pub records: Vec<CsvRecord>,
+    pub warnings: Vec<String>,
+}

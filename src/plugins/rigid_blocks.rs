@@ -1,0 +1,100 @@
+//! Rigid blocks and their DEM contacts with the points (section 3.2):
+//! neighbour lists, contact forces, their transfer, the blocks' motion,
+//! the contacts' work, and the blocks' record, `blocks.csv`.
+
+use super::records::{refill, samples_in_run};
+use super::{MpmPlugin, PluginSetup};
+use crate::checkpoint::{Checkpointed, TimeRecord};
+use crate::components::{BlockId, PartReactions, Pose, Reaction, RigidVelocity};
+use crate::math::Real;
+use crate::resources::{
+    BlockContactHistory, BlockLog, BlockPartSample, BlockSample, Clock, ContactWork, Probes,
+    UpdateScheme,
+};
+use crate::rigid::BlockShape;
+use crate::scene::SceneError;
+use crate::systems::{
+    ContactStep, ContactTransferStep, DiagnosticsStep, MpmSystems, account_contact_work,
+    compute_rigid_contacts, move_rigid_blocks, rebuild_neighbour_lists, record_blocks,
+    transfer_contact_forces,
+};
+use bevy_ecs::prelude::*;
+
+/// Rigid blocks, their contacts and their record.
+pub struct RigidBlocksPlugin;
+
+impl MpmPlugin for RigidBlocksPlugin {
+    fn build(&self, setup: &mut PluginSetup) -> Result<(), SceneError> {
+        let scene = setup.scene;
+        let world = &mut *setup.world;
+        let samples = samples_in_run(world.resource::<Clock>(), world.resource::<Probes>().every);
+        let compound_parts: usize = scene
+            .blocks
+            .iter()
+            .map(|b| match &b.shape {
+                BlockShape::Compound { parts } => parts.len(),
+                _ => 0,
+            })
+            .sum();
+        let mut log = BlockLog {
+            names: scene.blocks.iter().map(|b| b.name.clone()).collect(),
+            samples: Vec::with_capacity(samples * scene.blocks.len()),
+            parts: Vec::with_capacity(samples * compound_parts),
+        };
+        record_blocks_at_the_start(world, &mut log);
+        world.insert_resource(log);
+        world.insert_resource(scene.contact);
+        world.insert_resource(BlockContactHistory::default());
+        world.insert_resource(ContactWork::default());
+        setup.keep_resource::<BlockContactHistory>("block springs");
+        setup.keep_resource::<ContactWork>("contact work");
+        if scene.blocks.is_empty() {
+            setup.keep_checkpointed::<BlockLog>("blocks");
+        } else {
+            setup.record::<BlockLog>("blocks", "blocks.csv");
+        }
+        Ok(())
+    }
+
+    fn add_systems(&self, schedule: &mut Schedule, _: UpdateScheme) {
+        schedule.add_systems((
+            rebuild_neighbour_lists.in_set(MpmSystems::Neighbours),
+            compute_rigid_contacts.in_set(ContactStep::Blocks),
+            transfer_contact_forces.in_set(ContactTransferStep::Forces),
+            move_rigid_blocks.in_set(MpmSystems::RigidBodies),
+            account_contact_work.in_set(DiagnosticsStep::ContactWork),
+            record_blocks.in_set(DiagnosticsStep::Blocks),
+        ));
+    }
+}
+
+impl Checkpointed for BlockLog {
+    type Stored = (Vec<BlockSample>, Vec<BlockPartSample>);
+
+    fn stored(&self) -> Self::Stored {
+        (self.samples.clone(), self.parts.clone())
+    }
+
+    fn restore(&mut self, (samples, parts): Self::Stored) {
+        refill(&mut self.samples, samples);
+        refill(&mut self.parts, parts);
+    }
+}
+
+impl TimeRecord for BlockLog {
+    fn forget_from(&mut self, time: Real) {
+        self.samples.retain(|s| s.time < time);
+        self.parts.retain(|s| s.time < time);
+    }
+}
+
+/// The blocks present at the start, as `record_blocks` samples them after
+/// a step, in scene order: at t = 0, with no reaction yet.
+fn record_blocks_at_the_start(world: &mut World, log: &mut BlockLog) {
+    let mut query = world.query::<(&BlockId, &Reaction, &PartReactions, &Pose, &RigidVelocity)>();
+    let mut blocks: Vec<_> = query.iter(world).collect();
+    blocks.sort_unstable_by_key(|(id, ..)| id.index);
+    for block in blocks {
+        log.record(0.0, block);
+    }
+}
