@@ -1,9 +1,12 @@
 //! Every example runs to its end without an error: one per extension
-//! point (a user system, a scene built in code, stages, resuming from a
-//! checkpoint, running with the outputs from a program).
+//! point (a user system, a recorded quantity added by a plugin, a scene
+//! built in code, stages, resuming from a checkpoint, running with the
+//! outputs from a program).
 
 #[path = "../examples/custom_system.rs"]
 mod custom_system;
+#[path = "../examples/recorded_quantity.rs"]
+mod recorded_quantity;
 #[path = "../examples/resume.rs"]
 mod resume;
 #[path = "../examples/run_with_outputs.rs"]
@@ -16,6 +19,12 @@ mod stages;
 #[test]
 fn a_user_system() {
     custom_system::main().expect("the example runs");
+}
+
+#[test]
+fn a_recorded_quantity_written_and_resumed() {
+    recorded_quantity::main()
+        .expect("the example runs and its resumed series is the straight one's");
 }
 
 #[test]
