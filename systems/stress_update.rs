@@ -69,6 +69,7 @@ pub fn update_stress(
                 MaterialModel::MohrCoulomb(m) => step.apply(m, &mut points, &scratch.stencils),
                 MaterialModel::DruckerPrager(m) => step.apply(m, &mut points, &scratch.stencils),
                 MaterialModel::NewtonianFluid(m) => step.apply(m, &mut points, &scratch.stencils),
+                MaterialModel::User(m) => step.apply(m, &mut points, &scratch.stencils),
             }
         }
     }

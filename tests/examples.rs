@@ -1,8 +1,11 @@
 //! Every example runs to its end without an error: one per extension
-//! point (a user system, a recorded quantity added by a plugin, a scene
+//! point (a user system, a constitutive model defined outside the crate,
+//! a recorded quantity added by a plugin, a scene
 //! built in code, stages, resuming from a checkpoint, running with the
 //! outputs from a program).
 
+#[path = "../examples/custom_model.rs"]
+mod custom_model;
 #[path = "../examples/custom_system.rs"]
 mod custom_system;
 #[path = "../examples/recorded_quantity.rs"]
@@ -15,6 +18,12 @@ mod run_with_outputs;
 mod scene_in_code;
 #[path = "../examples/stages.rs"]
 mod stages;
+
+#[test]
+fn a_constitutive_model_defined_outside_the_crate() {
+    custom_model::main()
+        .expect("the example runs and its points stay on or inside the yield surface");
+}
 
 #[test]
 fn a_user_system() {

@@ -3,7 +3,9 @@
 //!
 //! The engine calls models through [`ConstitutiveModel`], monomorphised per
 //! body so the stress loop has no dynamic dispatch inside it; the scene picks
-//! a model through [`MaterialModel`].
+//! a model through [`MaterialModel`]. A model defined outside the crate
+//! plugs in as [`MaterialModel::User`] in a scene built in code (see
+//! [`UserModel`]).
 
 mod elasticity_linear;
 mod elasticity_neo_hookean;
@@ -19,6 +21,7 @@ pub use plasticity_mohr_coulomb::MohrCoulomb;
 
 use crate::math::{DMat2, Real, SymTensor};
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 
 /// The motion of one material point over one step, as a model sees it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -130,6 +133,63 @@ pub enum MaterialModel {
     DruckerPrager(DruckerPrager),
     /// Weakly compressible Newtonian fluid (eq. 22).
     NewtonianFluid(NewtonianFluid),
+    /// A model defined outside the crate, for scenes built in code (a scene
+    /// file cannot name it, and a scene holding one cannot be serialized).
+    #[serde(skip)]
+    User(UserModel),
+}
+
+/// A constitutive model defined outside the crate, by name. The stress
+/// update calls it through a pointer (one indirect call per point and
+/// step); the engine's own models are called directly.
+#[derive(Clone)]
+pub struct UserModel {
+    name: String,
+    model: Arc<dyn ConstitutiveModel>,
+}
+
+impl UserModel {
+    /// The model `model`, named `name` in messages and in the scene's
+    /// fingerprint (which a checkpoint must match: give different models
+    /// different names).
+    pub fn new(name: impl Into<String>, model: impl ConstitutiveModel + 'static) -> Self {
+        Self {
+            name: name.into(),
+            model: Arc::new(model),
+        }
+    }
+
+    /// The model's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+}
+
+impl std::fmt::Debug for UserModel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "UserModel({:?})", self.name)
+    }
+}
+
+/// The same model: the same name and the same instance.
+impl PartialEq for UserModel {
+    fn eq(&self, other: &Self) -> bool {
+        self.name == other.name && Arc::ptr_eq(&self.model, &other.model)
+    }
+}
+
+impl ConstitutiveModel for UserModel {
+    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) -> Real {
+        self.model.update_stress(stress, step)
+    }
+
+    fn p_wave_modulus(&self) -> Real {
+        self.model.p_wave_modulus()
+    }
+
+    fn stored_energy_density(&self, stress: &SymTensor, f: &DMat2, f_zz: Real) -> Real {
+        self.model.stored_energy_density(stress, f, f_zz)
+    }
 }
 
 impl MaterialModel {
@@ -141,12 +201,13 @@ impl MaterialModel {
             Self::MohrCoulomb(m) => m.check(),
             Self::DruckerPrager(m) => m.check(),
             Self::NewtonianFluid(m) => m.check(),
+            Self::User(_) => Ok(()),
         }
     }
 
     /// Whether `stress` is admissible for the model: inside (or on) the
     /// yield surface of the plastic models, which return it unchanged;
-    /// always for the others.
+    /// always for the others (a user model's surface is not known).
     pub fn admits(&self, stress: &SymTensor) -> bool {
         match self {
             Self::MohrCoulomb(m) => m.return_map(*stress) == *stress,
@@ -163,6 +224,7 @@ impl MaterialModel {
             Self::MohrCoulomb(m) => m,
             Self::DruckerPrager(m) => m,
             Self::NewtonianFluid(m) => m,
+            Self::User(m) => m,
         }
     }
 }
