@@ -197,6 +197,21 @@ impl Simulation {
         &self.registries.warnings
     }
 
+    /// The index in the scene's `stages` of the stage running, if the scene
+    /// has stages and the last has not ended.
+    pub fn stage_index(&self) -> Option<usize> {
+        let plan = self.world.get_resource::<crate::resources::StagePlan>()?;
+        (!plan.progress.finished).then_some(plan.progress.current)
+    }
+
+    /// The whole state a checkpoint would store, encoded: equal for two
+    /// simulations of one scene exactly when a checkpoint of either would
+    /// resume the same run. For tests of resuming.
+    #[doc(hidden)]
+    pub fn encoded_state(&mut self) -> Result<Vec<u8>, CheckpointError> {
+        crate::checkpoint::encoded_state(&mut self.world, self.fingerprint, &self.registries.kept)
+    }
+
     /// The records the outputs write as CSV, in the order they were
     /// registered.
     pub(crate) fn csv_records(&self) -> &[CsvRecord] {

@@ -23,24 +23,25 @@ mod stages;
 mod stress_update;
 mod surface_loads;
 
-pub use body_contact::compute_body_contacts;
-pub use boundary::rebuild_node_constraints;
-pub use contact::compute_rigid_contacts;
-pub use contact_transfer::transfer_contact_forces;
-pub use contact_work::account_contact_work;
-pub use diagnostics::{
+pub(crate) use body_contact::compute_body_contacts;
+pub(crate) use boundary::rebuild_node_constraints;
+pub(crate) use contact::compute_rigid_contacts;
+pub(crate) use contact_transfer::transfer_contact_forces;
+pub(crate) use contact_work::account_contact_work;
+pub(crate) use diagnostics::{
     advance_clock, check_finite, record_blocks, record_body_pairs, record_probes_and_energy,
 };
-pub use grid_reset::reset_grid_layers;
-pub use grid_to_particle::grid_to_particle;
-pub use load_work::account_load_work;
-pub use neighbours::rebuild_neighbour_lists;
-pub use nodal_solve::solve_nodal_momentum;
-pub use particle_to_grid::particle_to_grid;
-pub use rigid_bodies::move_rigid_blocks;
-pub use stages::{advance_stages, dynamic_blocks_in_scene_order, enter_stage, side_points};
-pub use stress_update::update_stress;
-pub use surface_loads::apply_surface_loads;
+pub(crate) use grid_reset::reset_grid_layers;
+pub(crate) use grid_to_particle::grid_to_particle;
+pub(crate) use load_work::account_load_work;
+pub(crate) use neighbours::rebuild_neighbour_lists;
+pub(crate) use nodal_solve::solve_nodal_momentum;
+pub(crate) use particle_to_grid::particle_to_grid;
+pub(crate) use rigid_bodies::move_rigid_blocks;
+pub use stages::side_points;
+pub(crate) use stages::{advance_stages, dynamic_blocks_in_scene_order, enter_stage};
+pub(crate) use stress_update::update_stress;
+pub(crate) use surface_loads::apply_surface_loads;
 
 use crate::resources::UpdateScheme;
 use bevy_ecs::prelude::*;
@@ -115,7 +116,7 @@ impl MpmSystems {
 /// A schedule with the sets chained in the order of `scheme` and the
 /// ordered steps inside them; the features' plugins add their systems
 /// (see [`crate::plugins`]).
-pub fn build_schedule(scheme: UpdateScheme) -> Schedule {
+pub(crate) fn build_schedule(scheme: UpdateScheme) -> Schedule {
     let mut schedule = Schedule::new(MpmSchedule);
     schedule.set_executor(SingleThreadedExecutor::new());
     schedule.set_build_settings(ScheduleBuildSettings {

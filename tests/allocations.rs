@@ -7,7 +7,6 @@
 mod common;
 
 use mpdem::prelude::*;
-use mpdem::resources::StagePlan;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
@@ -102,13 +101,13 @@ fn every_scene_steps_without_allocating() {
     pile.grid.cells = (50, 35);
     pile.time.dt = 2e-4;
     let mut driven = Simulation::from_scene(&pile).unwrap_or_else(|e| panic!("{e}"));
-    while driven.world().resource::<StagePlan>().progress.current < 2 {
+    while driven.stage_index().is_some_and(|s| s < 2) {
         driven.step().unwrap_or_else(|e| panic!("{e}"));
     }
     // The same as a body of revolution.
     pile.settings.geometry = mpdem::resources::Geometry::Axisymmetric;
     let mut revolved = Simulation::from_scene(&pile).unwrap_or_else(|e| panic!("{e}"));
-    while revolved.world().resource::<StagePlan>().progress.current < 2 {
+    while revolved.stage_index().is_some_and(|s| s < 2) {
         revolved.step().unwrap_or_else(|e| panic!("{e}"));
     }
     // A dynamic block falling in a stage that ends when the kinetic energy

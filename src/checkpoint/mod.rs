@@ -34,8 +34,9 @@ use crate::components::{
 mod kept_state;
 mod state_hash;
 
-pub use kept_state::{Checkpointed, Holder, KeptState, StoredState, TimeRecord};
-pub use state_hash::StateHasher;
+pub use kept_state::{Checkpointed, TimeRecord};
+pub(crate) use kept_state::{Holder, KeptState, StoredState};
+pub(crate) use state_hash::StateHasher;
 
 use crate::math::Real;
 use crate::resources::{Clock, Probes, StagePlan};
@@ -180,7 +181,7 @@ struct BlockState {
 
 /// Identifies a scene up to what a resumed run may change (its name,
 /// `time.end` and `output`): a hash of everything else.
-pub fn scene_fingerprint(scene: &Scene) -> u64 {
+pub(crate) fn scene_fingerprint(scene: &Scene) -> u64 {
     let mut fixed = scene.clone();
     fixed.name = None;
     fixed.time.end = 0.0;
@@ -198,25 +199,37 @@ pub fn scene_fingerprint(scene: &Scene) -> u64 {
     hasher.finish()
 }
 
+/// The world's state as a checkpoint stores it (`postcard`), without the
+/// file's header; an encoding error names no file.
+pub(crate) fn encoded_state(
+    world: &mut World,
+    fingerprint: u64,
+    kept: &KeptState,
+) -> Result<Vec<u8>, CheckpointError> {
+    let encode = |detail: String| CheckpointError::Encode {
+        path: PathBuf::new(),
+        detail,
+    };
+    let holders = holders(world);
+    let stored = kept.save(world, &holders).map_err(encode)?;
+    let state = capture(world, fingerprint, stored);
+    postcard::to_stdvec(&state).map_err(|e| encode(e.to_string()))
+}
+
 /// Writes the world's state to `path`, through a temporary file renamed
 /// into place, so a stop while writing leaves the previous checkpoint.
-pub fn write_checkpoint(
+pub(crate) fn write_checkpoint(
     world: &mut World,
     fingerprint: u64,
     kept: &KeptState,
     path: &Path,
 ) -> Result<(), CheckpointError> {
-    let holders = holders(world);
-    let stored = kept
-        .save(world, &holders)
-        .map_err(|detail| CheckpointError::Encode {
+    let payload = encoded_state(world, fingerprint, kept).map_err(|e| match e {
+        CheckpointError::Encode { detail, .. } => CheckpointError::Encode {
             path: path.to_path_buf(),
             detail,
-        })?;
-    let state = capture(world, fingerprint, stored);
-    let payload = postcard::to_stdvec(&state).map_err(|e| CheckpointError::Encode {
-        path: path.to_path_buf(),
-        detail: e.to_string(),
+        },
+        other => other,
     })?;
     let mut bytes = Vec::with_capacity(HEADER_BYTES + payload.len());
     bytes.extend_from_slice(MAGIC);
@@ -248,7 +261,7 @@ pub fn write_checkpoint(
 /// Puts the state stored in `path` into `world`, freshly spawned from the
 /// scene whose fingerprint is `fingerprint`, with the user state of
 /// `kept`.
-pub fn restore_checkpoint(
+pub(crate) fn restore_checkpoint(
     world: &mut World,
     scene: &Scene,
     fingerprint: u64,

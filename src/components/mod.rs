@@ -10,17 +10,18 @@ mod rigid;
 mod transfer_scratch;
 
 pub use crate::node_rect::NodeRect;
-pub use block_template::BlockTemplate;
+pub(crate) use block_template::BlockTemplate;
 pub use body::{
-    BodyAcceleration, BodyIndex, BodyName, Material, RegionConstraint, RegionConstraints,
-    bodies_in_scene_order, sort_into_scene_order,
+    BodyAcceleration, BodyIndex, BodyName, Material, RegionConstraint, bodies_in_scene_order,
 };
-pub use grid_layer::{Fix, GridLayer, GridNode, NodeConstraint, WINDOW_MARGIN_NODES};
-pub use material_points::{
-    DampedEnergy, MaterialPoints, NewPoint, PointEnergies, StepTravel, hoop_radius,
-};
+pub(crate) use body::{RegionConstraints, sort_into_scene_order};
+pub(crate) use grid_layer::{Fix, NodeConstraint};
+pub use grid_layer::{GridLayer, GridNode};
+pub use material_points::{DampedEnergy, MaterialPoints, PointEnergies};
+pub(crate) use material_points::{NewPoint, StepTravel, hoop_radius};
+pub(crate) use rigid::{BlockContactLaw, RigidShape};
 pub use rigid::{
-    BlockContactLaw, BlockContacts, BlockId, BlockOutline, NeighbourList, PartReactions,
-    PointContact, Pose, Reaction, RigidMass, RigidMotion, RigidShape, RigidVelocity,
+    BlockContacts, BlockId, BlockOutline, NeighbourList, PartReactions, PointContact, Pose,
+    Reaction, RigidMass, RigidMotion, RigidVelocity,
 };
-pub use transfer_scratch::{MassMomentumForce, RemapScratch, TransferScratch};
+pub(crate) use transfer_scratch::{MassMomentumForce, RemapScratch, TransferScratch};

@@ -2,9 +2,9 @@
 //! snapshots, and the run-output folder that ties them together.
 
 pub mod csv;
-pub mod manifest;
-pub mod output;
-pub mod plot;
-pub mod vtk;
+pub(crate) mod manifest;
+pub(crate) mod output;
+pub(crate) mod plot;
+pub(crate) mod vtk;
 
-pub use output::RunOutput;
+pub(crate) use output::RunOutput;

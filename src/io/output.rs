@@ -246,11 +246,6 @@ impl RunOutput {
         Ok((output, gaps))
     }
 
-    /// The output folder.
-    pub fn dir(&self) -> &Path {
-        &self.folder.dir
-    }
-
     /// Call after every step: appends the samples recorded in the step to
     /// the CSV series, and writes a frame when one is due.
     pub fn after_step(&mut self, sim: &mut Simulation) -> std::io::Result<()> {

@@ -10,11 +10,11 @@ mod records;
 mod rigid_blocks;
 mod stages;
 
-pub use body_contact::BodyContactPlugin;
-pub use core::CorePlugin;
-pub use records::RecordsPlugin;
-pub use rigid_blocks::RigidBlocksPlugin;
-pub use stages::StagesPlugin;
+use body_contact::BodyContactPlugin;
+use core::CorePlugin;
+use records::RecordsPlugin;
+use rigid_blocks::RigidBlocksPlugin;
+use stages::StagesPlugin;
 
 use crate::checkpoint::{Checkpointed, KeptState, TimeRecord};
 use crate::components::BlockTemplate;
@@ -49,7 +49,7 @@ pub trait MpmPlugin: Sync {
 /// The engine's features, in the order they are built (a plugin may use
 /// the resources of those before it; stages come last, as entering the
 /// first stage changes what the others set up).
-pub const DEFAULT_PLUGINS: [&dyn MpmPlugin; 5] = [
+pub(crate) const DEFAULT_PLUGINS: [&dyn MpmPlugin; 5] = [
     &CorePlugin,
     &RecordsPlugin,
     &RigidBlocksPlugin,

@@ -75,7 +75,7 @@ impl Grid {
     }
 
     /// The grid as the shape functions see it: walls where an edge is fixed or slip.
-    pub fn stencil_grid(&self) -> StencilGrid {
+    pub(crate) fn stencil_grid(&self) -> StencilGrid {
         StencilGrid {
             origin: self.origin,
             inv_cell_size: 1.0 / self.cell_size,

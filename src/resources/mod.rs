@@ -15,21 +15,22 @@ mod stage_spec;
 mod stages;
 
 pub use crate::geometry::Geometry;
-pub use body_contacts::{
-    BodyContacts, BodyPairContact, BodyPairLaw, DetectionChunk, MAX_CONTACT_BODIES, PairSummary,
-    PairTally, law_between,
-};
+pub use body_contacts::{BodyContacts, BodyPairLaw, PairSummary};
+pub(crate) use body_contacts::{BodyPairContact, MAX_CONTACT_BODIES, PairTally, law_between};
 pub use clock::Clock;
-pub use contact_settings::{BlockContactHistory, BlockContactKey, ContactSettings, Penetration};
+pub(crate) use contact_settings::{BlockContactHistory, BlockContactKey};
+pub use contact_settings::{ContactSettings, Penetration};
 pub use contact_work::ContactWork;
 pub use diagnostics::{Diagnostics, NumericalFailure};
 pub use grid::{EdgeCondition, EdgeConditions, Grid, GridEdge};
-pub use load_work::{LoadWork, LoadedEdge};
+pub use load_work::LoadWork;
+pub(crate) use load_work::LoadedEdge;
 pub use records::{
     BlockLog, BlockPartSample, BlockSample, BodyPairLog, BodyPairSample, EnergyLog, EnergySample,
     Probe, ProbeSample, Probes,
 };
 pub use settings::{Gravity, PositionUpdate, Settings, UpdateScheme};
-pub use shared_layers::SharedLayers;
+pub(crate) use shared_layers::SharedLayers;
 pub use stage_spec::{BlockVelocity, EdgeChanges, Side, StageEnd, StageSpec, SurfaceTraction};
-pub use stages::{AppliedLoad, StageEndReason, StageLog, StagePlan, StageProgress, StageRecord};
+pub(crate) use stages::{AppliedLoad, StagePlan, StageProgress};
+pub use stages::{StageEndReason, StageLog, StageRecord};

@@ -6,7 +6,7 @@ mod placement;
 mod shapes;
 mod substeps;
 
-pub use integrate::{advance, integrate_dynamic, velocity_at};
-pub use placement::{PlacementChecks, placement_warnings};
+pub(crate) use integrate::{advance, integrate_dynamic, velocity_at};
+pub(crate) use placement::{PlacementChecks, placement_warnings};
 pub use shapes::BlockShape;
-pub use substeps::{MAX_SUBSTEPS, substeps_needed};
+pub(crate) use substeps::{MAX_SUBSTEPS, substeps_needed};

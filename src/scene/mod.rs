@@ -10,10 +10,10 @@
 mod axisymmetry;
 mod builder;
 mod contact_stability;
-pub mod input_file;
+pub(crate) mod input_file;
 mod layout_warnings;
 mod location;
-pub mod point_file;
+pub(crate) mod point_file;
 mod shapes;
 mod spawn;
 mod spawn_blocks;

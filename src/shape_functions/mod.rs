@@ -11,9 +11,9 @@ mod bspline;
 mod linear;
 mod ugimp;
 
-pub use bspline::QuadraticBSpline;
-pub use linear::LinearHat;
-pub use ugimp::UGimp;
+pub(crate) use bspline::QuadraticBSpline;
+pub(crate) use linear::LinearHat;
+pub(crate) use ugimp::UGimp;
 
 use crate::math::{DVec2, Real};
 use crate::parallel::MIN_POINTS_PER_TASK;
@@ -21,7 +21,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// A one-dimensional shape function, in cell units.
-pub trait Kernel: Copy + Send + Sync {
+pub(crate) trait Kernel: Copy + Send + Sync {
     /// Weight and its derivative with respect to ξ, for a point at signed
     /// distance ξ = (x_p − x_i)/h from a node, with particle domain
     /// half-size `half` = l/h and its inverse `inv_half` (GIMP only; the
@@ -46,7 +46,12 @@ pub enum ShapeFunction {
 impl ShapeFunction {
     /// The stencil of a point at `position` with domain half-size `half_size`,
     /// or `None` when the point has left `grid`.
-    pub fn stencil(self, position: DVec2, half_size: DVec2, grid: &StencilGrid) -> Option<Stencil> {
+    pub(crate) fn stencil(
+        self,
+        position: DVec2,
+        half_size: DVec2,
+        grid: &StencilGrid,
+    ) -> Option<Stencil> {
         match self {
             Self::Linear => Stencil::new(LinearHat, position, half_size, grid),
             Self::UGimp => Stencil::new(UGimp, position, half_size, grid),
@@ -57,7 +62,7 @@ impl ShapeFunction {
     /// Computes the stencil of every point into `out` (same length as the
     /// columns), in parallel, and returns the index of the first point that
     /// has left the grid (its stencil is then empty), if any.
-    pub fn fill_stencils(
+    pub(crate) fn fill_stencils(
         self,
         positions: &[DVec2],
         half_sizes: &[DVec2],
@@ -109,11 +114,11 @@ fn fill<K: Kernel>(
 
 /// Nodes per direction of every stencil: the widest kernel support (the
 /// B-spline's 1.5 cells, uGIMP's h + l ≤ 1.5 cells) touches three nodes.
-pub const STENCIL_WIDTH: usize = 3;
+pub(crate) const STENCIL_WIDTH: usize = 3;
 
 /// What a stencil needs to know of the grid.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct StencilGrid {
+pub(crate) struct StencilGrid {
     /// Position of node (0, 0) (m).
     pub origin: DVec2,
     /// Inverse cell size 1/h (1/m), so stencils need no division by h.
@@ -132,7 +137,7 @@ pub struct StencilGrid {
 /// The 3 × 3 nodes a point maps to, with the 1D weights and derivatives per
 /// direction. Node (a, b) of the stencil is grid node (`base[0] + a`, `base[1] + b`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Stencil {
+pub(crate) struct Stencil {
     /// Grid index of the stencil's lower-left node.
     pub base: [u32; 2],
     /// Weights along x for nodes `base[0]` to `base[0] + 2`.
