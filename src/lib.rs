@@ -1,23 +1,12 @@
 //! # mpdem
 //!
-//! A two-dimensional (plane-strain) material point method engine whose
-//! contacts are computed the discrete-element way, after "DEM-enriched
-//! contact approach for material point method" (see `shared/reference`).
-//!
-//! The engine is an entity-component-system program on `bevy_ecs`:
-//! * a deformable body is an entity with its points as columns
-//!   ([`components::MaterialPoints`]), its [`components::Material`] and its
-//!   own [`components::GridLayer`] (shared, as a summed copy, with the other
-//!   bodies of its contact group, if any);
-//! * the grid, clock, settings and records are [`resources`];
-//! * the time step is the [`systems::MpmSchedule`], whose
-//!   [`systems::MpmSystems`] sets follow Algorithm 1 of the paper, and into
-//!   which a user adds systems of their own;
-//! * a scenario is a RON [`scene::Scene`], and a [`Simulation`] runs it.
-//!
-//! `systems/` sits beside `src/` (declared here with `#[path]`) so the
-//! schedule is visible at a glance, while staying one crate.
-
+//! A two-dimensional (plane-strain or axisymmetric) material point method
+//! engine whose contacts are computed the discrete-element way, after H.
+//! Chen, S. Zhao, J. Zhao, X. Zhou, "DEM-enriched contact approach for
+//! material point method", Comput. Methods Appl. Mech. Engrg. 404 (2023)
+//! 115814. Start with [`Simulation`] and the [`prelude`]; the chapter below
+//! is `docs/architecture.md`.
+#![doc = include_str!("../docs/architecture.md")]
 #![deny(missing_docs)]
 
 #[doc(hidden)]

@@ -6,7 +6,7 @@
 //! points (and the energy damping has taken from it), every block present
 //! (pose, velocity, reaction, neighbour list, contacts with their
 //! tangential springs), and the state that the features and user systems
-//! registered ([`KeptState`]): the settings, gravity and grid edges as the
+//! registered by name: the settings, gravity and grid edges as the
 //! stages left them, the springs between bodies and between blocks, where
 //! the run is in its stages, and every record the outputs are written
 //! from. What the scene fixes (shapes, materials, laws, the grid) is

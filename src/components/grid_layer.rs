@@ -65,7 +65,7 @@ pub const WINDOW_MARGIN_NODES: usize = 8;
 /// so a small body on a large grid stores only the nodes around it. Layers
 /// never exchange momentum; bodies meet only through contact, except the
 /// bodies of one contact group, whose copies of the layer are summed after
-/// every scatter ([`crate::resources::SharedLayers`]).
+/// every scatter (the contact groups' shared layers).
 ///
 /// Only the active nodes are reset and solved each step (and smoothed by
 /// XPIC). Every other node holds zero, stored in the window or not: a
@@ -144,7 +144,7 @@ impl GridLayer {
 
     /// Adds `rect` (clipped to the grid) to the active nodes, keeping every
     /// value. When the window does not cover them, it moves to cover them
-    /// with a margin of [`WINDOW_MARGIN_NODES`] or a quarter of their size,
+    /// with a margin of `WINDOW_MARGIN_NODES` or a quarter of their size,
     /// whichever is larger: an allocation, made only when a body leaves its
     /// window. A window that still covers the active nodes is kept, however
     /// much larger (e.g. the whole grid after a point has left it).

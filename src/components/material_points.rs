@@ -174,7 +174,7 @@ impl MaterialPoints {
     }
 
     /// The radius at which point `p`'s hoop terms are taken in axisymmetry:
-    /// [`hoop_radius`] of its position and domain.
+    /// `hoop_radius` of its position and domain.
     pub fn hoop_radius(&self, p: usize) -> Real {
         hoop_radius(self.position[p], self.half_size[p])
     }

@@ -35,7 +35,7 @@ fn time(t: Real) -> String {
 
 /// A record the outputs write as CSV, one row per sample: written whole
 /// ([`write_series`]) or appended to as the run records it
-/// ([`crate::io::RunOutput`]).
+/// (by the run's output folder).
 pub trait CsvSeries {
     /// The header line (without its line break).
     const HEADER: &'static str;

@@ -135,7 +135,7 @@ impl Grid {
         ]
     }
 
-    /// Why a point's stencil was refused (see [`StencilGrid`]): its position
+    /// Why a point's stencil was refused (see `StencilGrid`): its position
     /// outside the grid, or, inside it, its support reaching past an open
     /// (`Free`) edge, where there are no nodes to take its weight; the
     /// nearest such edge is named.

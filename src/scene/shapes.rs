@@ -39,7 +39,7 @@ pub enum Shape {
         /// Outer radius (m), > inner radius.
         outer_radius: Real,
     },
-    /// The points listed in a CSV file (see [`super::point_file`]), e.g.
+    /// The points listed in a CSV file (see the scene format's point lists), e.g.
     /// `Points(file: "soil.csv")`: a header naming the columns `x`, `y` and
     /// optionally `volume`, then one point per line. Without a volume
     /// column each point gets the lattice's volume, (h / n)²; each point's
@@ -178,7 +178,7 @@ impl Shape {
 
     /// The box the body's material occupies: the outline's bounds, or for a
     /// point list the box around its points' domains
-    /// ([`super::point_file::domain_bounds`], `spacing` h / n for points
+    /// (`point_file::domain_bounds`, `spacing` h / n for points
     /// without a volume).
     pub fn extent(&self, spacing: Real) -> (DVec2, DVec2) {
         match self {

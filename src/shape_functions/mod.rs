@@ -1,11 +1,11 @@
 //! Shape functions: how a material point spreads onto, and reads from, the
 //! nodes of the background grid.
 //!
-//! Each kernel is one-dimensional and stateless ([`Kernel`]); the 2D weight is
+//! Each kernel is one-dimensional and stateless (`Kernel`); the 2D weight is
 //! the tensor product S_ip = S(x_p − x_i) S(y_p − y_i) and the generalised
 //! gradient is G_ip = (S'(x) S(y), S(x) S'(y)) (paper eqs. 9a/9b). Every
 //! kernel here touches at most three nodes per direction, so a point's
-//! [`Stencil`] is always 3 × 3 nodes (unused entries carry zero weight).
+//! `Stencil` is always 3 × 3 nodes (unused entries carry zero weight).
 
 mod bspline;
 mod linear;
