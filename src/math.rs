@@ -146,15 +146,31 @@ pub(crate) fn outer(a: DVec2, b: DVec2) -> DMat2 {
     DMat2::from_cols(a * b.x, a * b.y)
 }
 
+/// Why a polygon is not a convex one.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum PolygonError {
+    /// Fewer than three vertices, or one not finite.
+    #[error("polygon needs at least 3 finite vertices, got {0}")]
+    TooFew(usize),
+    /// A turn goes the other way.
+    #[error("polygon is not convex at vertex {index} ({at})")]
+    NotConvex {
+        /// The vertex's index.
+        index: usize,
+        /// Where it is.
+        at: DVec2,
+    },
+    /// Every vertex lies on one line.
+    #[error("polygon has no area (all vertices on a line)")]
+    NoArea,
+}
+
 /// Accepts a polygon with three or more finite vertices whose turns all go
-/// the same way (either winding; collinear vertices allowed); the message
+/// the same way (either winding; collinear vertices allowed); the error
 /// says what is wrong and where.
-pub(crate) fn check_convex_polygon(vertices: &[DVec2]) -> Result<(), String> {
+pub(crate) fn check_convex_polygon(vertices: &[DVec2]) -> Result<(), PolygonError> {
     if vertices.len() < 3 || vertices.iter().any(|v| !v.is_finite()) {
-        return Err(format!(
-            "polygon needs at least 3 finite vertices, got {}",
-            vertices.len()
-        ));
+        return Err(PolygonError::TooFew(vertices.len()));
     }
     let n = vertices.len();
     let mut sign = 0.0;
@@ -163,16 +179,16 @@ pub(crate) fn check_convex_polygon(vertices: &[DVec2]) -> Result<(), String> {
         let turn = (b - a).perp_dot(c - b);
         if turn != 0.0 {
             if sign != 0.0 && turn.signum() != sign {
-                return Err(format!(
-                    "polygon is not convex at vertex {} ({b})",
-                    (k + 1) % n
-                ));
+                return Err(PolygonError::NotConvex {
+                    index: (k + 1) % n,
+                    at: b,
+                });
             }
             sign = turn.signum();
         }
     }
     if sign == 0.0 {
-        return Err("polygon has no area (all vertices on a line)".into());
+        return Err(PolygonError::NoArea);
     }
     Ok(())
 }

@@ -132,9 +132,9 @@ impl Simulation {
         scene: &Scene,
         path: &Path,
     ) -> Result<(), CheckpointError> {
-        let refuse = |detail: &str| CheckpointError::Restore {
+        let refuse = |reason: &'static str| CheckpointError::Restore {
             path: path.to_path_buf(),
-            detail: detail.to_owned(),
+            reason,
         };
         if self.clock().step != 0 {
             return Err(refuse("the simulation has already stepped"));

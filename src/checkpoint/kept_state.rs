@@ -31,10 +31,65 @@ pub type Holders = [(Holder, Entity)];
 type Insert = Box<dyn FnOnce(&mut World, &Holders)>;
 
 /// Encodes one registered type from the world.
-type Encode = fn(&World, &Holders) -> Result<Stored, String>;
+type Encode = fn(&World, &Holders) -> Result<Stored, Problem>;
 
 /// Decodes one registered type.
-type Decode = fn(&Stored) -> Result<Insert, String>;
+type Decode = fn(&Stored) -> Result<Insert, Problem>;
+
+/// Why the state registered under a name could not be stored or put back.
+#[derive(Debug, thiserror::Error)]
+pub enum StateError {
+    /// What went wrong with the state of one name.
+    #[error("state '{name}': {problem}")]
+    Named {
+        /// The registered name.
+        name: String,
+        /// What went wrong.
+        problem: Problem,
+    },
+    /// The checkpoint holds other names than the run registered.
+    #[error(
+        "its user state differs from this run's: it holds {extra:?} that this run does not keep, \
+         and lacks {missing:?} that it keeps (register state with \
+         Simulation::keep_in_checkpoints or keep_components_in_checkpoints, or add its plugin, \
+         before restoring)"
+    )]
+    OtherNames {
+        /// Names the checkpoint holds and the run does not keep.
+        extra: Vec<String>,
+        /// Names the run keeps and the checkpoint lacks.
+        missing: Vec<String>,
+    },
+}
+
+/// What went wrong with the state of one registered name.
+#[derive(Debug, thiserror::Error)]
+pub enum Problem {
+    /// A registered resource is not in the world.
+    #[error("it is not in the world")]
+    NotInTheWorld,
+    /// `postcard` could not encode or decode it.
+    #[error(transparent)]
+    Postcard(#[from] postcard::Error),
+    /// Bytes were left after decoding it.
+    #[error("{0} bytes left after it: its type has changed")]
+    BytesLeft(usize),
+    /// It was stored as a resource and is kept as a component, or the
+    /// reverse.
+    #[error("it was stored as a {stored}, and is kept as a {kept}")]
+    OtherKind {
+        /// How the checkpoint stored it.
+        stored: &'static str,
+        /// How the run keeps it.
+        kept: &'static str,
+    },
+    /// A component sits on a body or block the checkpoint does not hold.
+    #[error("it is on {0:?}, which the checkpoint does not hold")]
+    UnknownHolder(Holder),
+    /// A component is stored twice on one holder, or out of order.
+    #[error("it is stored twice on one body or block, or out of order")]
+    Unordered,
+}
 
 /// What a checkpoint stores of one registered type.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -155,12 +210,14 @@ impl KeptState {
 
     /// Encodes every registered type from `world`, whose bodies and blocks
     /// are `holders`; fails if a registered resource is not in the world.
-    pub fn save(&self, world: &World, holders: &Holders) -> Result<Vec<StoredState>, String> {
+    pub fn save(&self, world: &World, holders: &Holders) -> Result<Vec<StoredState>, StateError> {
         self.kept
             .iter()
             .map(|k| {
-                let stored =
-                    (k.encode)(world, holders).map_err(|e| format!("state '{}': {e}", k.name))?;
+                let stored = (k.encode)(world, holders).map_err(|problem| StateError::Named {
+                    name: k.name.clone(),
+                    problem,
+                })?;
                 Ok((k.name.clone(), stored))
             })
             .collect()
@@ -176,7 +233,7 @@ impl KeptState {
         &self,
         stored: Vec<StoredState>,
         holders: &[Holder],
-    ) -> Result<DecodedState, String> {
+    ) -> Result<DecodedState, StateError> {
         let mut registered: Vec<&Kept> = self.kept.iter().collect();
         let mut stored = stored;
         registered.sort_unstable_by(|a, b| a.name.cmp(&b.name));
@@ -191,36 +248,40 @@ impl KeptState {
                     .map(|n| n.to_string())
                     .collect()
             };
-            return Err(format!(
-                "its user state differs from this run's: it holds {:?} that this run does not \
-                 keep, and lacks {:?} that it keeps (register state with \
-                 Simulation::keep_in_checkpoints or keep_components_in_checkpoints, or add \
-                 its plugin, before restoring)",
-                not_in(&stored_names, &registered_names),
-                not_in(&registered_names, &stored_names),
-            ));
+            return Err(StateError::OtherNames {
+                extra: not_in(&stored_names, &registered_names),
+                missing: not_in(&registered_names, &stored_names),
+            });
         }
         let inserts = registered
             .iter()
             .zip(&stored)
             .map(|(kept, (name, stored))| {
-                if let Stored::Components(values) = stored {
-                    if let Some((holder, _)) = values.iter().find(|(h, _)| !holders.contains(h)) {
-                        return Err(format!(
-                            "state '{name}' is on {holder:?}, which the checkpoint does not hold"
-                        ));
-                    }
-                    if values.windows(2).any(|pair| pair[0].0 >= pair[1].0) {
-                        return Err(format!(
-                            "state '{name}' is stored twice on one body or block, or out of order"
-                        ));
-                    }
-                }
-                (kept.decode)(stored).map_err(|e| format!("state '{name}': {e}"))
+                check_holders(stored, holders)
+                    .and_then(|()| (kept.decode)(stored))
+                    .map_err(|problem| StateError::Named {
+                        name: name.clone(),
+                        problem,
+                    })
             })
-            .collect::<Result<Vec<Insert>, String>>()?;
+            .collect::<Result<Vec<Insert>, StateError>>()?;
         Ok(DecodedState { inserts })
     }
+}
+
+/// Components may sit only on the checkpoint's bodies and blocks, once
+/// each, in order.
+fn check_holders(stored: &Stored, holders: &[Holder]) -> Result<(), Problem> {
+    let Stored::Components(values) = stored else {
+        return Ok(());
+    };
+    if let Some(&(holder, _)) = values.iter().find(|(h, _)| !holders.contains(h)) {
+        return Err(Problem::UnknownHolder(holder));
+    }
+    if values.windows(2).any(|pair| pair[0].0 >= pair[1].0) {
+        return Err(Problem::Unordered);
+    }
+    Ok(())
 }
 
 /// User state decoded from a checkpoint, to be put into the world once its
@@ -242,26 +303,28 @@ impl DecodedState {
 
 /// Decodes `bytes` wholly as a `T`: bytes left over mean that the type
 /// has changed since the checkpoint was written.
-fn decode_exactly<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, String> {
-    let (value, rest): (T, &[u8]) = postcard::take_from_bytes(bytes).map_err(|e| e.to_string())?;
+fn decode_exactly<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, Problem> {
+    let (value, rest): (T, &[u8]) = postcard::take_from_bytes(bytes)?;
     if !rest.is_empty() {
-        return Err(format!(
-            "{} bytes left after it: its type has changed",
-            rest.len()
-        ));
+        return Err(Problem::BytesLeft(rest.len()));
     }
     Ok(value)
 }
 
-fn encode_resource<R: Resource + Serialize>(world: &World, _: &Holders) -> Result<Stored, String> {
-    let resource = world.get_resource::<R>().ok_or("it is not in the world")?;
-    let bytes = postcard::to_allocvec(resource).map_err(|e| e.to_string())?;
-    Ok(Stored::Resource(bytes))
+const RESOURCE: &str = "resource";
+const COMPONENT: &str = "component";
+
+fn encode_resource<R: Resource + Serialize>(world: &World, _: &Holders) -> Result<Stored, Problem> {
+    let resource = world.get_resource::<R>().ok_or(Problem::NotInTheWorld)?;
+    Ok(Stored::Resource(postcard::to_allocvec(resource)?))
 }
 
-fn decode_resource<R: Resource + DeserializeOwned>(stored: &Stored) -> Result<Insert, String> {
+fn decode_resource<R: Resource + DeserializeOwned>(stored: &Stored) -> Result<Insert, Problem> {
     let Stored::Resource(bytes) = stored else {
-        return Err("it was stored as a component, and is kept as a resource".into());
+        return Err(Problem::OtherKind {
+            stored: COMPONENT,
+            kept: RESOURCE,
+        });
     };
     let resource: R = decode_exactly(bytes)?;
     Ok(Box::new(move |world: &mut World, _: &Holders| {
@@ -269,15 +332,17 @@ fn decode_resource<R: Resource + DeserializeOwned>(stored: &Stored) -> Result<In
     }))
 }
 
-fn encode_checkpointed<R: Checkpointed>(world: &World, _: &Holders) -> Result<Stored, String> {
-    let resource = world.get_resource::<R>().ok_or("it is not in the world")?;
-    let bytes = postcard::to_allocvec(&resource.stored()).map_err(|e| e.to_string())?;
-    Ok(Stored::Resource(bytes))
+fn encode_checkpointed<R: Checkpointed>(world: &World, _: &Holders) -> Result<Stored, Problem> {
+    let resource = world.get_resource::<R>().ok_or(Problem::NotInTheWorld)?;
+    Ok(Stored::Resource(postcard::to_allocvec(&resource.stored())?))
 }
 
-fn decode_checkpointed<R: Checkpointed>(stored: &Stored) -> Result<Insert, String> {
+fn decode_checkpointed<R: Checkpointed>(stored: &Stored) -> Result<Insert, Problem> {
     let Stored::Resource(bytes) = stored else {
-        return Err("it was stored as a component, and is kept as a resource".into());
+        return Err(Problem::OtherKind {
+            stored: COMPONENT,
+            kept: RESOURCE,
+        });
     };
     let part: R::Stored = decode_exactly(bytes)?;
     Ok(Box::new(move |world: &mut World, _: &Holders| {
@@ -293,26 +358,26 @@ fn forget_from<R: TimeRecord>(world: &mut World, time: Real) {
 fn encode_component<C: Component + Serialize>(
     world: &World,
     holders: &Holders,
-) -> Result<Stored, String> {
+) -> Result<Stored, Problem> {
     holders
         .iter()
         .filter_map(|&(holder, entity)| Some((holder, world.get::<C>(entity)?)))
-        .map(|(holder, component)| {
-            let bytes = postcard::to_allocvec(component).map_err(|e| e.to_string())?;
-            Ok((holder, bytes))
-        })
-        .collect::<Result<_, String>>()
+        .map(|(holder, component)| Ok((holder, postcard::to_allocvec(component)?)))
+        .collect::<Result<_, Problem>>()
         .map(Stored::Components)
 }
 
-fn decode_component<C: Component + DeserializeOwned>(stored: &Stored) -> Result<Insert, String> {
+fn decode_component<C: Component + DeserializeOwned>(stored: &Stored) -> Result<Insert, Problem> {
     let Stored::Components(values) = stored else {
-        return Err("it was stored as a resource, and is kept as a component".into());
+        return Err(Problem::OtherKind {
+            stored: RESOURCE,
+            kept: COMPONENT,
+        });
     };
     let decoded = values
         .iter()
         .map(|(holder, bytes)| Ok((*holder, decode_exactly::<C>(bytes)?)))
-        .collect::<Result<Vec<(Holder, C)>, String>>()?;
+        .collect::<Result<Vec<(Holder, C)>, Problem>>()?;
     Ok(Box::new(move |world: &mut World, holders: &Holders| {
         for &(_, entity) in holders {
             world.entity_mut(entity).remove::<C>();

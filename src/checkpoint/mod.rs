@@ -34,8 +34,9 @@ use crate::components::{
 mod kept_state;
 mod state_hash;
 
-pub use kept_state::{Checkpointed, TimeRecord};
-pub(crate) use kept_state::{Holder, KeptState, StoredState};
+pub use kept_state::Holder;
+pub use kept_state::{Checkpointed, Problem, StateError, TimeRecord};
+pub(crate) use kept_state::{KeptState, StoredState};
 pub(crate) use state_hash::StateHasher;
 
 use crate::math::Real;
@@ -55,27 +56,90 @@ const HEADER_BYTES: usize = 8 + 4 + 8 + 4;
 
 /// The state after the layout's number, once its length and CRC-32 match
 /// those stored before it; otherwise what does not match.
-fn checked_payload(stored: &[u8]) -> Result<&[u8], String> {
+fn checked_payload(stored: &[u8]) -> Result<&[u8], Damage> {
     let Some((length, stored)) = stored.split_first_chunk::<8>() else {
-        return Err("it ends before its length".into());
+        return Err(Damage::NoLength);
     };
     let Some((checksum, payload)) = stored.split_first_chunk::<4>() else {
-        return Err("it ends before its checksum".into());
+        return Err(Damage::NoChecksum);
     };
-    let length = u64::from_le_bytes(*length);
-    if length != payload.len() as u64 {
-        return Err(format!(
-            "{} bytes of state where its header says {length}",
-            payload.len()
-        ));
+    let header = u64::from_le_bytes(*length);
+    if header != payload.len() as u64 {
+        return Err(Damage::Length {
+            found: payload.len(),
+            header,
+        });
     }
-    let (stored, computed) = (u32::from_le_bytes(*checksum), crc32fast::hash(payload));
-    if stored != computed {
-        return Err(format!(
-            "CRC-32 {computed:08x} where its header says {stored:08x}"
-        ));
+    let (header, computed) = (u32::from_le_bytes(*checksum), crc32fast::hash(payload));
+    if header != computed {
+        return Err(Damage::Checksum { computed, header });
     }
     Ok(payload)
+}
+
+/// How a checkpoint's state fails its header.
+#[derive(Debug, thiserror::Error)]
+pub enum Damage {
+    /// The file ends before the state's length.
+    #[error("it ends before its length")]
+    NoLength,
+    /// The file ends before the state's checksum.
+    #[error("it ends before its checksum")]
+    NoChecksum,
+    /// The state's length is not the header's.
+    #[error("{found} bytes of state where its header says {header}")]
+    Length {
+        /// The state's length.
+        found: usize,
+        /// The header's.
+        header: u64,
+    },
+    /// The state's CRC-32 is not the header's.
+    #[error("CRC-32 {computed:08x} where its header says {header:08x}")]
+    Checksum {
+        /// The state's.
+        computed: u32,
+        /// The header's.
+        header: u32,
+    },
+}
+
+/// Why a file is not a checkpoint of this scene that this version can read.
+#[derive(Debug, thiserror::Error)]
+pub enum FormatProblem {
+    /// It does not start with the magic bytes.
+    #[error("it does not start as one")]
+    NotACheckpoint,
+    /// It ends within its header.
+    #[error("it ends after its first bytes")]
+    Truncated,
+    /// It has another layout.
+    #[error("layout {found} where this version reads {FORMAT}")]
+    Layout {
+        /// The file's layout.
+        found: u32,
+    },
+    /// Its state cannot be decoded.
+    #[error("its state cannot be read: {0}")]
+    Unreadable(postcard::Error),
+    /// Bytes follow its state.
+    #[error("{0} bytes follow its state")]
+    BytesLeft(usize),
+    /// Its bodies are not the scene's.
+    #[error("its bodies are not the scene's")]
+    OtherBodies,
+    /// It has a block the scene does not.
+    #[error("it has a block {0} the scene does not")]
+    UnknownBlock(usize),
+    /// It has a block absent at the start that no stage adds.
+    #[error("it has block {0}, which no stage adds")]
+    NotAdded(usize),
+    /// A block could not be spawned again.
+    #[error("block {0} could not be spawned")]
+    NotSpawned(u32),
+    /// Its kept state does not fit the run's.
+    #[error(transparent)]
+    State(#[from] StateError),
 }
 
 /// The layout of the stored state; a checkpoint of another layout is
@@ -98,29 +162,37 @@ pub enum CheckpointError {
         /// What failed.
         source: std::io::Error,
     },
-    /// The state could not be encoded.
-    #[error("{}: cannot encode the run's state: {detail}", path.display())]
+    /// The kept state could not be encoded.
+    #[error("{}: cannot encode the run's state: {source}", path.display())]
     Encode {
         /// The checkpoint file.
         path: PathBuf,
         /// What failed.
-        detail: String,
+        source: StateError,
+    },
+    /// The whole state could not be encoded.
+    #[error("{}: cannot encode the run's state: {source}", path.display())]
+    EncodeWhole {
+        /// The checkpoint file.
+        path: PathBuf,
+        /// What failed.
+        source: postcard::Error,
     },
     /// The file's state does not match its length or checksum.
-    #[error("{}: the checkpoint is damaged ({detail}); it is left as it is", path.display())]
+    #[error("{}: the checkpoint is damaged ({damage}); it is left as it is", path.display())]
     Damaged {
         /// The checkpoint file.
         path: PathBuf,
         /// What did not match.
-        detail: String,
+        damage: Damage,
     },
     /// The file is not a checkpoint this version can read.
-    #[error("{}: not a checkpoint of this mpdem ({detail})", path.display())]
+    #[error("{}: not a checkpoint of this mpdem ({problem})", path.display())]
     Format {
         /// The checkpoint file.
         path: PathBuf,
         /// What was wrong.
-        detail: String,
+        problem: FormatProblem,
     },
     /// The checkpoint was written for another scene.
     #[error(
@@ -136,12 +208,12 @@ pub enum CheckpointError {
     Scene(#[from] SceneError),
     /// A checkpoint was to be restored into a simulation that cannot take
     /// it (one that has stepped, or was built from another scene).
-    #[error("cannot restore {}: {detail}", path.display())]
+    #[error("cannot restore {}: {reason}", path.display())]
     Restore {
         /// The checkpoint file.
         path: PathBuf,
         /// Why.
-        detail: String,
+        reason: &'static str,
     },
 }
 
@@ -206,14 +278,18 @@ pub(crate) fn encoded_state(
     fingerprint: u64,
     kept: &KeptState,
 ) -> Result<Vec<u8>, CheckpointError> {
-    let encode = |detail: String| CheckpointError::Encode {
-        path: PathBuf::new(),
-        detail,
-    };
     let holders = holders(world);
-    let stored = kept.save(world, &holders).map_err(encode)?;
+    let stored = kept
+        .save(world, &holders)
+        .map_err(|source| CheckpointError::Encode {
+            path: PathBuf::new(),
+            source,
+        })?;
     let state = capture(world, fingerprint, stored);
-    postcard::to_stdvec(&state).map_err(|e| encode(e.to_string()))
+    postcard::to_stdvec(&state).map_err(|source| CheckpointError::EncodeWhole {
+        path: PathBuf::new(),
+        source,
+    })
 }
 
 /// Writes the world's state to `path`, through a temporary file renamed
@@ -225,9 +301,13 @@ pub(crate) fn write_checkpoint(
     path: &Path,
 ) -> Result<(), CheckpointError> {
     let payload = encoded_state(world, fingerprint, kept).map_err(|e| match e {
-        CheckpointError::Encode { detail, .. } => CheckpointError::Encode {
+        CheckpointError::Encode { source, .. } => CheckpointError::Encode {
             path: path.to_path_buf(),
-            detail,
+            source,
+        },
+        CheckpointError::EncodeWhole { source, .. } => CheckpointError::EncodeWhole {
+            path: path.to_path_buf(),
+            source,
         },
         other => other,
     })?;
@@ -268,37 +348,32 @@ pub(crate) fn restore_checkpoint(
     kept: &KeptState,
     path: &Path,
 ) -> Result<(), CheckpointError> {
-    let format_error = |detail: String| CheckpointError::Format {
+    let format_error = |problem: FormatProblem| CheckpointError::Format {
         path: path.to_path_buf(),
-        detail,
+        problem,
     };
     let bytes = std::fs::read(path).map_err(|source| CheckpointError::Io {
         path: path.to_path_buf(),
         source,
     })?;
     let Some(stored) = bytes.strip_prefix(MAGIC) else {
-        return Err(format_error("it does not start as one".into()));
+        return Err(format_error(FormatProblem::NotACheckpoint));
     };
     let Some((format, stored)) = stored.split_first_chunk::<4>() else {
-        return Err(format_error("it ends after its first bytes".into()));
+        return Err(format_error(FormatProblem::Truncated));
     };
     let format = u32::from_le_bytes(*format);
     if format != FORMAT {
-        return Err(format_error(format!(
-            "layout {format} where this version reads {FORMAT}"
-        )));
+        return Err(format_error(FormatProblem::Layout { found: format }));
     }
-    let stored = checked_payload(stored).map_err(|detail| CheckpointError::Damaged {
+    let stored = checked_payload(stored).map_err(|damage| CheckpointError::Damaged {
         path: path.to_path_buf(),
-        detail,
+        damage,
     })?;
     let (state, rest): (RunState, &[u8]) = postcard::take_from_bytes(stored)
-        .map_err(|e| format_error(format!("its state cannot be read: {e}")))?;
+        .map_err(|e| format_error(FormatProblem::Unreadable(e)))?;
     if !rest.is_empty() {
-        return Err(format_error(format!(
-            "{} bytes follow its state",
-            rest.len()
-        )));
+        return Err(format_error(FormatProblem::BytesLeft(rest.len())));
     }
     if state.scene != fingerprint {
         return Err(CheckpointError::OtherScene {
@@ -309,7 +384,7 @@ pub(crate) fn restore_checkpoint(
     if bodies.len() != state.bodies.len()
         || bodies.iter().zip(&state.bodies).any(|(e, s)| *e != s.0)
     {
-        return Err(format_error("its bodies are not the scene's".into()));
+        return Err(format_error(FormatProblem::OtherBodies));
     }
     apply(world, scene, state, kept).map_err(format_error)
 }
@@ -364,7 +439,7 @@ fn apply(
     scene: &Scene,
     state: RunState,
     kept: &KeptState,
-) -> Result<(), String> {
+) -> Result<(), FormatProblem> {
     // First what can be refused without having changed the world: the
     // kept state, all decoded before any is put in, once the blocks are.
     // A block the scene lacks is found after the points are in: a world
@@ -424,7 +499,11 @@ fn holders(world: &mut World) -> Vec<(Holder, Entity)> {
 
 /// Makes the blocks present those of the checkpoint (stages may have added
 /// or removed some), then gives each its stored state.
-fn restore_blocks(world: &mut World, scene: &Scene, blocks: Vec<BlockState>) -> Result<(), String> {
+fn restore_blocks(
+    world: &mut World,
+    scene: &Scene,
+    blocks: Vec<BlockState>,
+) -> Result<(), FormatProblem> {
     let present = |world: &mut World| -> Vec<(Entity, u32)> {
         world
             .query::<(Entity, &BlockId)>()
@@ -446,20 +525,20 @@ fn restore_blocks(world: &mut World, scene: &Scene, blocks: Vec<BlockState>) -> 
     for block in &blocks {
         let index = block.index as usize;
         if index >= scene.blocks.len() {
-            return Err(format!("it has a block {index} the scene does not"));
+            return Err(FormatProblem::UnknownBlock(index));
         }
         if !spawned.iter().any(|(_, i)| *i == block.index) {
             let template = absent
                 .iter()
                 .find(|t| t.id.index == block.index)
-                .ok_or_else(|| format!("it has block {index}, which no stage adds"))?;
+                .ok_or(FormatProblem::NotAdded(index))?;
             template.spawn(world);
         }
     }
     let present = present(world);
     for block in blocks {
         let Some(&(entity, _)) = present.iter().find(|(_, i)| *i == block.index) else {
-            return Err(format!("block {} could not be spawned", block.index));
+            return Err(FormatProblem::NotSpawned(block.index));
         };
         world.entity_mut(entity).insert((
             block.pose,

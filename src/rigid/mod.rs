@@ -8,5 +8,5 @@ mod substeps;
 
 pub(crate) use integrate::{advance, integrate_dynamic, velocity_at};
 pub(crate) use placement::{PlacementChecks, placement_warnings};
-pub use shapes::BlockShape;
+pub use shapes::{BlockShape, BlockShapeError};
 pub(crate) use substeps::{MAX_SUBSTEPS, substeps_needed};

@@ -1,6 +1,6 @@
 //! Block shapes as the scene writes them, turned into parry shapes.
 
-use crate::math::{DVec2, Real, check_convex_polygon};
+use crate::math::{DVec2, PolygonError, Real, check_convex_polygon};
 use parry2d_f64::mass_properties::MassProperties;
 use parry2d_f64::math::Pose;
 use parry2d_f64::shape::SharedShape;
@@ -43,27 +43,25 @@ pub enum BlockShape {
 
 impl BlockShape {
     /// The parry shape, or what is wrong with the description.
-    pub fn build(&self) -> Result<SharedShape, String> {
+    pub fn build(&self) -> Result<SharedShape, BlockShapeError> {
         match self {
             Self::Cuboid { half_extents } => {
                 if half_extents.cmpgt(DVec2::ZERO).all() && half_extents.is_finite() {
                     Ok(SharedShape::cuboid(half_extents.x, half_extents.y))
                 } else {
-                    Err(format!(
-                        "cuboid half_extents must be > 0, got {half_extents}"
-                    ))
+                    Err(BlockShapeError::HalfExtents(*half_extents))
                 }
             }
             Self::Polygon { vertices } => {
                 check_convex(vertices)?;
                 SharedShape::convex_polyline(counter_clockwise(vertices))
-                    .ok_or_else(|| "polygon has no area".to_string())
+                    .ok_or(BlockShapeError::Polygon(PolygonError::NoArea))
             }
             Self::Ball { radius } => {
                 if radius.is_finite() && *radius > 0.0 {
                     Ok(SharedShape::ball(*radius))
                 } else {
-                    Err(format!("ball radius must be > 0, got {radius}"))
+                    Err(BlockShapeError::Radius(*radius))
                 }
             }
             Self::RoundPolygon {
@@ -72,21 +70,24 @@ impl BlockShape {
             } => {
                 check_convex(vertices)?;
                 if !(border_radius.is_finite() && *border_radius > 0.0) {
-                    return Err(format!("border_radius must be > 0, got {border_radius}"));
+                    return Err(BlockShapeError::BorderRadius(*border_radius));
                 }
                 SharedShape::round_convex_polyline(counter_clockwise(vertices), *border_radius)
-                    .ok_or_else(|| "polygon has no area".to_string())
+                    .ok_or(BlockShapeError::Polygon(PolygonError::NoArea))
             }
             Self::Compound { parts } => {
                 if parts.is_empty() {
-                    return Err("a compound needs at least one part".into());
+                    return Err(BlockShapeError::EmptyCompound);
                 }
                 let mut built = Vec::with_capacity(parts.len());
                 for (k, (shape, offset, angle)) in parts.iter().enumerate() {
                     if matches!(shape, Self::Compound { .. }) {
-                        return Err(format!("part {k}: a compound cannot contain a compound"));
+                        return Err(BlockShapeError::NestedCompound(k));
                     }
-                    let part = shape.build().map_err(|e| format!("part {k}: {e}"))?;
+                    let part = shape.build().map_err(|e| BlockShapeError::Part {
+                        part: k,
+                        error: Box::new(e),
+                    })?;
                     built.push((Pose::new(*offset, *angle), part));
                 }
                 Ok(SharedShape::compound(built))
@@ -203,14 +204,45 @@ fn rounded_outline(vertices: &[DVec2], radius: Real) -> Vec<DVec2> {
 
 /// A convex polygon as [`check_convex_polygon`] wants it; a non-convex one
 /// is refused with the advice to build the block from convex parts.
-fn check_convex(vertices: &[DVec2]) -> Result<(), String> {
-    check_convex_polygon(vertices).map_err(|e| {
-        if e.contains("not convex") {
-            format!("{e}: split it into convex parts with a Compound")
-        } else {
-            e
-        }
+fn check_convex(vertices: &[DVec2]) -> Result<(), BlockShapeError> {
+    check_convex_polygon(vertices).map_err(|e| match e {
+        PolygonError::NotConvex { .. } => BlockShapeError::NotConvex(e),
+        e => BlockShapeError::Polygon(e),
     })
+}
+
+/// What is wrong with a block's shape.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum BlockShapeError {
+    /// A cuboid's half extents are not positive.
+    #[error("cuboid half_extents must be > 0, got {0}")]
+    HalfExtents(DVec2),
+    /// A ball's radius is not positive.
+    #[error("ball radius must be > 0, got {0}")]
+    Radius(Real),
+    /// A rounded polygon's border radius is not positive.
+    #[error("border_radius must be > 0, got {0}")]
+    BorderRadius(Real),
+    /// The polygon is degenerate.
+    #[error(transparent)]
+    Polygon(PolygonError),
+    /// The polygon is not convex.
+    #[error("{0}: split it into convex parts with a Compound")]
+    NotConvex(PolygonError),
+    /// A compound without parts.
+    #[error("a compound needs at least one part")]
+    EmptyCompound,
+    /// A compound inside a compound.
+    #[error("part {0}: a compound cannot contain a compound")]
+    NestedCompound(usize),
+    /// A part is wrong.
+    #[error("part {part}: {error}")]
+    Part {
+        /// The part's index.
+        part: usize,
+        /// What is wrong with it.
+        error: Box<BlockShapeError>,
+    },
 }
 
 #[cfg(test)]
@@ -237,7 +269,8 @@ mod tests {
             .build()
             .err()
             .unwrap();
-        assert!(e.contains("use") || e.contains("Compound"), "{e}");
+        assert!(matches!(e, BlockShapeError::NotConvex(_)), "{e}");
+        assert!(e.to_string().contains("Compound"), "{e}");
         let pile = BlockShape::Compound {
             parts: vec![
                 (

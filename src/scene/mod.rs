@@ -29,11 +29,11 @@ pub use builder::SceneBuilder;
 pub(crate) use contact_stability::{body_contact_stability_warnings, undamped_contact_warning};
 pub(crate) use layout_warnings::{body_overlap_warnings, free_edge_warnings};
 pub use location::SourceLocation;
-pub use point_file::ListedPoint;
-pub use shapes::Shape;
+pub use point_file::{ListedPoint, PointFileError, PointListProblem};
+pub use shapes::{Shape, ShapeError};
 pub(crate) use spawn::spawn_scene;
 pub(crate) use step_warnings::off_step_warnings;
-pub use velocity_field::VelocityField;
+pub use velocity_field::{VelocityField, VelocityFieldError};
 
 use crate::components::{BodyAcceleration, RegionConstraint, RigidVelocity};
 use crate::contact::ContactLaw;
@@ -186,15 +186,26 @@ struct TimeInput {
     max_steps: Option<u64>,
 }
 
-impl TryFrom<TimeInput> for TimeSpec {
-    type Error = String;
+/// Why a `time` section has no end, or two.
+#[derive(Debug, thiserror::Error)]
+pub enum TimeEndError {
+    /// Both `end` and `steps`.
+    #[error("{}", TIME_END_TWICE)]
+    Twice,
+    /// Neither.
+    #[error("{}", TIME_END_MISSING)]
+    Missing,
+}
 
-    fn try_from(input: TimeInput) -> Result<Self, String> {
+impl TryFrom<TimeInput> for TimeSpec {
+    type Error = TimeEndError;
+
+    fn try_from(input: TimeInput) -> Result<Self, TimeEndError> {
         let end = match (input.end, input.steps) {
             (Some(end), None) => end,
             (None, Some(steps)) => steps as Real * input.dt,
-            (Some(_), Some(_)) => return Err(TIME_END_TWICE.into()),
-            (None, None) => return Err(TIME_END_MISSING.into()),
+            (Some(_), Some(_)) => return Err(TimeEndError::Twice),
+            (None, None) => return Err(TimeEndError::Missing),
         };
         Ok(Self {
             dt: input.dt,

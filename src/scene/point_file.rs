@@ -91,10 +91,88 @@ impl Scene {
 
 /// Reads a point list. The error names the file, the line and what was
 /// expected there.
-pub fn read_point_file(path: &Path) -> Result<Vec<ListedPoint>, String> {
-    let text = super::input_file::read_input(path)
-        .map_err(|e| format!("{}: cannot read the point list: {e}", path.display()))?;
-    parse_point_list(&text).map_err(|e| format!("{}:{e}", path.display()))
+pub fn read_point_file(path: &Path) -> Result<Vec<ListedPoint>, PointFileError> {
+    let text = super::input_file::read_input(path).map_err(|source| PointFileError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    parse_point_list(&text).map_err(|(line, problem)| PointFileError::Line {
+        path: path.to_path_buf(),
+        line,
+        problem,
+    })
+}
+
+/// Why a point list cannot be read.
+#[derive(Debug, thiserror::Error)]
+pub enum PointFileError {
+    /// The file cannot be read.
+    #[error("{}: cannot read the point list: {source}", path.display())]
+    Read {
+        /// The file.
+        path: std::path::PathBuf,
+        /// What failed.
+        source: std::io::Error,
+    },
+    /// A line is wrong.
+    #[error("{}:{line}: {problem}", path.display())]
+    Line {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The line's number.
+        line: usize,
+        /// What is wrong there.
+        problem: PointListProblem,
+    },
+}
+
+/// What is wrong on a line of a point list.
+#[derive(Debug, thiserror::Error)]
+pub enum PointListProblem {
+    /// No header.
+    #[error("the point list is empty; expected a header x,y or x,y,volume")]
+    Empty,
+    /// A column the list does not know.
+    #[error("unknown column '{0}' in the header; expected x, y and optionally volume")]
+    UnknownColumn(String),
+    /// A column named twice.
+    #[error("the header names column '{0}' twice")]
+    TwiceNamed(String),
+    /// No x or no y column.
+    #[error("the header must name the columns x and y (and optionally volume), got '{0}'")]
+    NoPosition(String),
+    /// A row with another count of values than the header.
+    #[error("expected {expected} values ({columns}) as in the header, got {found}")]
+    Values {
+        /// The header's count.
+        expected: usize,
+        /// The header's columns.
+        columns: String,
+        /// The row's count.
+        found: usize,
+    },
+    /// A value that is not a finite number.
+    #[error("expected a finite number in column {column}, got '{value}'")]
+    Number {
+        /// The column.
+        column: String,
+        /// The value.
+        value: String,
+    },
+    /// A position listed twice.
+    #[error("the point at {at} is listed twice (first on line {first})")]
+    Twice {
+        /// The position.
+        at: DVec2,
+        /// The line of its first listing.
+        first: usize,
+    },
+    /// A volume not positive.
+    #[error("volume must be > 0, got {0}")]
+    Volume(Real),
+    /// A header without points.
+    #[error("the point list has a header but no point")]
+    NoPoint,
 }
 
 /// A CSV field without its surrounding spaces and double quotes.
@@ -110,8 +188,8 @@ fn unquoted(field: &str) -> &str {
 /// The columns a point list may have.
 const COLUMNS: [&str; 3] = ["x", "y", "volume"];
 
-/// Parses the text of a point list; errors start with the line number.
-fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, String> {
+/// Parses the text of a point list; an error comes with its line number.
+fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, (usize, PointListProblem)> {
     let mut lines = text
         .trim_start_matches('\u{feff}')
         .lines()
@@ -119,7 +197,7 @@ fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, String> {
         .map(|(k, line)| (k + 1, line.trim()))
         .filter(|(_, line)| !line.is_empty() && !line.starts_with('#'));
     let Some((header_line, header)) = lines.next() else {
-        return Err("1: the point list is empty; expected a header x,y or x,y,volume".into());
+        return Err((1, PointListProblem::Empty));
     };
     // Spreadsheets and meshers write `"X"` as readily as `x`.
     let names: Vec<String> = header
@@ -129,20 +207,14 @@ fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, String> {
     let column = |name: &str| names.iter().position(|h| h == name);
     for (k, name) in names.iter().enumerate() {
         if !COLUMNS.contains(&name.as_str()) {
-            return Err(format!(
-                "{header_line}: unknown column '{name}' in the header; expected x, y and optionally volume"
-            ));
+            return Err((header_line, PointListProblem::UnknownColumn(name.clone())));
         }
         if names[..k].contains(name) {
-            return Err(format!(
-                "{header_line}: the header names column '{name}' twice"
-            ));
+            return Err((header_line, PointListProblem::TwiceNamed(name.clone())));
         }
     }
     let (Some(x), Some(y)) = (column("x"), column("y")) else {
-        return Err(format!(
-            "{header_line}: the header must name the columns x and y (and optionally volume), got '{header}'"
-        ));
+        return Err((header_line, PointListProblem::NoPosition(header.to_owned())));
     };
     let volume = column("volume");
     let mut points = Vec::new();
@@ -152,19 +224,24 @@ fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, String> {
     for (line, text) in lines {
         let values: Vec<&str> = text.split(',').map(unquoted).collect();
         if values.len() != names.len() {
-            return Err(format!(
-                "{line}: expected {} values ({}) as in the header, got {}",
-                names.len(),
-                names.join(", "),
-                values.len()
+            return Err((
+                line,
+                PointListProblem::Values {
+                    expected: names.len(),
+                    columns: names.join(", "),
+                    found: values.len(),
+                },
             ));
         }
-        let number = |k: usize| -> Result<Real, String> {
+        let number = |k: usize| -> Result<Real, (usize, PointListProblem)> {
             match values[k].parse::<Real>() {
                 Ok(v) if v.is_finite() => Ok(v),
-                _ => Err(format!(
-                    "{line}: expected a finite number in column {}, got '{}'",
-                    names[k], values[k]
+                _ => Err((
+                    line,
+                    PointListProblem::Number {
+                        column: names[k].clone(),
+                        value: values[k].to_owned(),
+                    },
                 )),
             }
         };
@@ -172,15 +249,19 @@ fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, String> {
         // + 0.0 makes −0 and 0 one place.
         let key = ((position.x + 0.0).to_bits(), (position.y + 0.0).to_bits());
         if let Some(first) = placed.insert(key, line) {
-            return Err(format!(
-                "{line}: the point at {position} is listed twice (first on line {first})"
+            return Err((
+                line,
+                PointListProblem::Twice {
+                    at: position,
+                    first,
+                },
             ));
         }
         let volume = match volume {
             Some(k) => {
                 let v = number(k)?;
                 if v <= 0.0 {
-                    return Err(format!("{line}: volume must be > 0, got {v}"));
+                    return Err((line, PointListProblem::Volume(v)));
                 }
                 Some(v)
             }
@@ -193,9 +274,7 @@ fn parse_point_list(text: &str) -> Result<Vec<ListedPoint>, String> {
         });
     }
     if points.is_empty() {
-        return Err(format!(
-            "{header_line}: the point list has a header but no point"
-        ));
+        return Err((header_line, PointListProblem::NoPoint));
     }
     Ok(points)
 }
@@ -212,7 +291,8 @@ mod tests {
 
     #[test]
     fn a_point_listed_twice_is_refused_with_both_lines() {
-        let e = parse_point_list("x,y\n1,2\n3,4\n# again\n1.0,2.0\n").unwrap_err();
+        let (line, problem) = parse_point_list("x,y\n1,2\n3,4\n# again\n1.0,2.0\n").unwrap_err();
+        let e = format!("{line}: {problem}");
         assert_eq!(
             e,
             "5: the point at [1, 2] is listed twice (first on line 2)"
@@ -246,7 +326,10 @@ mod tests {
 
     #[test]
     fn errors_give_the_line_as_an_editor_shows_it() {
-        let error = |text: &str| parse_point_list(text).unwrap_err();
+        let error = |text: &str| {
+            let (line, problem) = parse_point_list(text).unwrap_err();
+            format!("{line}: {problem}")
+        };
         assert_eq!(
             error("x,y\n1,2\n1,two\n"),
             "3: expected a finite number in column y, got 'two'"

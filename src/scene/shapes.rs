@@ -1,7 +1,7 @@
 //! Body outlines and the filling of an outline with material points.
 
 use super::point_file::ListedPoint;
-use crate::math::{DVec2, Real, check_convex_polygon};
+use crate::math::{DVec2, PolygonError, Real, check_convex_polygon};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -61,32 +61,29 @@ impl Shape {
     /// Checks the geometry: finite coordinates, ordered corners, positive
     /// radii, a convex polygon; a point list that has been read, with
     /// finite positions and positive volumes.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), ShapeError> {
         if let Self::Points { file, points } = self
             && points.is_empty()
         {
-            return Err(format!(
-                "the point list '{file}' has not been read (Scene::read_point_files) or is empty"
-            ));
+            return Err(ShapeError::Unread(file.clone()));
         }
         let (lo, hi) = self.bounds();
         if !(lo.is_finite() && hi.is_finite()) {
-            return Err(format!(
-                "shape coordinates must be finite, got bounds {lo} to {hi}"
-            ));
+            return Err(ShapeError::NotFinite { lo, hi });
         }
         match self {
             Self::Rectangle { min, max } => {
                 if !(min.cmplt(*max).all() && min.is_finite() && max.is_finite()) {
-                    return Err(format!(
-                        "rectangle needs min < max in x and y, got min {min}, max {max}"
-                    ));
+                    return Err(ShapeError::Corners {
+                        min: *min,
+                        max: *max,
+                    });
                 }
             }
             Self::Polygon { vertices } => check_convex_polygon(vertices)?,
             Self::Disk { radius, .. } => {
                 if !(radius.is_finite() && *radius > 0.0) {
-                    return Err(format!("disk radius must be > 0, got {radius}"));
+                    return Err(ShapeError::Radius(*radius));
                 }
             }
             Self::Ring {
@@ -98,19 +95,21 @@ impl Shape {
                     && outer_radius > inner_radius
                     && outer_radius.is_finite())
                 {
-                    return Err(format!(
-                        "ring needs 0 ≤ inner_radius < outer_radius, got {inner_radius} and {outer_radius}"
-                    ));
+                    return Err(ShapeError::Radii {
+                        inner: *inner_radius,
+                        outer: *outer_radius,
+                    });
                 }
             }
             Self::Points { file, points } => {
                 if let Some(p) = points.iter().find(|p| {
                     !p.position.is_finite() || p.volume.is_some_and(|v| !(v > 0.0 && v.is_finite()))
                 }) {
-                    return Err(format!(
-                        "point list '{file}': the point at {} has volume {:?}; positions must be finite and volumes > 0",
-                        p.position, p.volume
-                    ));
+                    return Err(ShapeError::ListedPoint {
+                        file: file.clone(),
+                        at: p.position,
+                        volume: p.volume,
+                    });
                 }
             }
         }
@@ -299,6 +298,56 @@ mod tests {
                 DVec2::new(1.0, 2.0),
             ],
         };
-        assert!(dart.check().unwrap_err().contains("not convex"));
+        assert!(dart.check().unwrap_err().to_string().contains("not convex"));
     }
+}
+
+/// What is wrong with a body's shape.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ShapeError {
+    /// A point list not read, or empty.
+    #[error("the point list '{0}' has not been read (Scene::read_point_files) or is empty")]
+    Unread(String),
+    /// Coordinates not finite.
+    #[error("shape coordinates must be finite, got bounds {lo} to {hi}")]
+    NotFinite {
+        /// The lower corner of the bounds.
+        lo: DVec2,
+        /// The upper corner.
+        hi: DVec2,
+    },
+    /// A rectangle's corners out of order.
+    #[error("rectangle needs min < max in x and y, got min {min}, max {max}")]
+    Corners {
+        /// Its `min`.
+        min: DVec2,
+        /// Its `max`.
+        max: DVec2,
+    },
+    /// A polygon that is not convex, or degenerate.
+    #[error(transparent)]
+    Polygon(#[from] PolygonError),
+    /// A disk's radius not positive.
+    #[error("disk radius must be > 0, got {0}")]
+    Radius(Real),
+    /// A ring's radii out of order.
+    #[error("ring needs 0 ≤ inner_radius < outer_radius, got {inner} and {outer}")]
+    Radii {
+        /// Its inner radius.
+        inner: Real,
+        /// Its outer radius.
+        outer: Real,
+    },
+    /// A listed point with a position not finite or a volume not positive.
+    #[error(
+        "point list '{file}': the point at {at} has volume {volume:?}; positions must be finite and volumes > 0"
+    )]
+    ListedPoint {
+        /// The list's file.
+        file: String,
+        /// The point's position.
+        at: DVec2,
+        /// Its volume.
+        volume: Option<Real>,
+    },
 }

@@ -2,6 +2,7 @@
 //! What each feature of the step needs besides (the grid, the clock, the
 //! records, the stages) its plugin adds (see [`crate::plugins`]).
 
+use super::velocity_field::VelocityFieldError;
 use super::{InitialStress, InitialVelocity, Scene, SceneError, SourceLocation, VelocityField};
 use crate::components::{
     BlockTemplate, BodyIndex, BodyName, DampedEnergy, GridLayer, Material, MaterialPoints,
@@ -107,10 +108,11 @@ fn fill_body(
     scene: &Scene,
     spec: &super::BodySpec,
     density: Real,
-) -> Result<MaterialPoints, String> {
+) -> Result<MaterialPoints, VelocityFieldError> {
     let h = scene.grid.cell_size;
     let spacing = h / spec.points_per_cell as Real;
-    let velocity_at: Box<dyn Fn(DVec2) -> Result<DVec2, String>> = match &spec.velocity {
+    let velocity_at: Box<dyn Fn(DVec2) -> Result<DVec2, VelocityFieldError>> = match &spec.velocity
+    {
         InitialVelocity::Constant(v) => {
             let v = *v;
             Box::new(move |_| Ok(v))

@@ -20,16 +20,64 @@ pub struct VelocityField {
     components: [Expression; 2],
 }
 
+/// Why a velocity field cannot be parsed or evaluated.
+#[derive(Debug, thiserror::Error)]
+pub enum VelocityFieldError {
+    /// An expression does not parse.
+    #[error("velocity {axis} = \"{text}\": {source}")]
+    Parse {
+        /// The component, `x` or `y`.
+        axis: &'static str,
+        /// The expression.
+        text: String,
+        /// What the parser says.
+        source: exmex::ExError,
+    },
+    /// An expression names a variable other than x and y.
+    #[error(
+        "velocity {axis} = \"{text}\": unknown variable '{variable}' (only x and y are allowed)"
+    )]
+    Variable {
+        /// The component, `x` or `y`.
+        axis: &'static str,
+        /// The expression.
+        text: String,
+        /// The unknown variable.
+        variable: String,
+    },
+    /// An expression cannot be evaluated at a point.
+    #[error("velocity at {at}: {source}")]
+    Eval {
+        /// The point.
+        at: DVec2,
+        /// What the evaluator says.
+        source: exmex::ExError,
+    },
+    /// A velocity is not finite at a point.
+    #[error("velocity at {at} is not finite ({value})")]
+    NotFinite {
+        /// The point.
+        at: DVec2,
+        /// The value.
+        value: Real,
+    },
+}
+
 impl VelocityField {
     /// Parses both expressions; the error names the offending one.
-    pub fn parse(x: &str, y: &str) -> Result<Self, String> {
-        let compile = |axis: &str, text: &str| -> Result<Expression, String> {
-            let expr = Expression::parse(text)
-                .map_err(|e| format!("velocity {axis} = \"{text}\": {e}"))?;
+    pub fn parse(x: &str, y: &str) -> Result<Self, VelocityFieldError> {
+        let compile = |axis: &'static str, text: &str| -> Result<Expression, VelocityFieldError> {
+            let expr = Expression::parse(text).map_err(|source| VelocityFieldError::Parse {
+                axis,
+                text: text.to_owned(),
+                source,
+            })?;
             if let Some(bad) = expr.var_names().iter().find(|v| *v != "x" && *v != "y") {
-                return Err(format!(
-                    "velocity {axis} = \"{text}\": unknown variable '{bad}' (only x and y are allowed)"
-                ));
+                return Err(VelocityFieldError::Variable {
+                    axis,
+                    text: text.to_owned(),
+                    variable: bad.clone(),
+                });
             }
             Ok(expr)
         };
@@ -39,7 +87,7 @@ impl VelocityField {
     }
 
     /// The velocity at `p`.
-    pub fn at(&self, p: DVec2) -> Result<DVec2, String> {
+    pub fn at(&self, p: DVec2) -> Result<DVec2, VelocityFieldError> {
         let mut v = [0.0; 2];
         for (value, expr) in v.iter_mut().zip(&self.components) {
             // exmex orders variables alphabetically: x before y.
@@ -50,9 +98,12 @@ impl VelocityField {
                 .collect();
             *value = expr
                 .eval(&args)
-                .map_err(|e| format!("velocity at {p}: {e}"))?;
+                .map_err(|source| VelocityFieldError::Eval { at: p, source })?;
             if !value.is_finite() {
-                return Err(format!("velocity at {p} is not finite ({value})"));
+                return Err(VelocityFieldError::NotFinite {
+                    at: p,
+                    value: *value,
+                });
             }
         }
         Ok(DVec2::from(v))
@@ -84,6 +135,7 @@ mod tests {
         assert!(
             VelocityField::parse("z", "0")
                 .unwrap_err()
+                .to_string()
                 .contains("unknown variable 'z'")
         );
     }
