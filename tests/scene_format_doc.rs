@@ -106,6 +106,7 @@ enums!(
     mpdem::resources::Penetration,
     mpdem::scene::StageEnd,
     mpdem::scene::Side,
+    mpdem::scene::AnimatedField,
 );
 
 /// The schema of a scene file: `Scene` traced, then every enum it reaches

@@ -1,6 +1,7 @@
 //! The output folder of a run: VTK frames, the ParaView collections and the
 //! CSV series during the run; PNG plots at the end.
 
+use super::animation::{Animation, FrameColumns};
 use super::csv::{self, CsvRecord};
 use super::manifest::OutputManifest;
 use super::plot::{Series, SeriesStyle, plot_points, plot_series};
@@ -48,6 +49,10 @@ pub struct RunOutput {
     series: Vec<SeriesFile>,
     /// The bodies' names in scene order, for the series that name them.
     bodies: Vec<String>,
+    /// The frames of `animation.gif`, if the scene asks for it.
+    animation: Option<Animation>,
+    /// The run's name, for the animation's titles.
+    name: String,
 }
 
 /// One CSV series open for appending.
@@ -155,6 +160,7 @@ impl RunOutput {
         let (manifest, removed) = OutputManifest::start(dir, source)?;
         let frame_every = frame_every(scene, sim);
         let bodies = sim.bodies().into_iter().map(|(_, n)| n).collect();
+        let animation = animation(scene, sim, frame_every);
         let mut output = Self {
             folder: Folder {
                 dir: dir.to_path_buf(),
@@ -167,6 +173,8 @@ impl RunOutput {
             curves: placed_curves(scene),
             series: Vec::new(),
             bodies,
+            animation,
+            name: sim.name().to_owned(),
         };
         for &record in sim.csv_records() {
             let file = output.open_series(record, sim.world(), false)?;
@@ -182,16 +190,17 @@ impl RunOutput {
     /// frame interval of the `scene` as for a new run. The extra frame a finished run
     /// writes at its end, off that interval, is dropped too: a run that
     /// never stopped would not have it. A folder without `points.pvd` is
-    /// not a run's folder: an error. Returns the output and, when the
-    /// folder's first frame was written after `checkpoint` (another run into
-    /// the folder since then replaced the frames), a warning that the frames
-    /// before the checkpoint are not this run's.
+    /// not a run's folder: an error. Returns the output and notes for the
+    /// user: when the folder's first frame was written after `checkpoint`
+    /// (another run into the folder since then replaced the frames), that
+    /// the frames before the checkpoint are not this run's; with an
+    /// animation, that it starts where the run resumed.
     pub fn resume(
         dir: &Path,
         scene: &Scene,
         sim: &Simulation,
         checkpoint: &Path,
-    ) -> std::io::Result<(Self, Option<String>)> {
+    ) -> std::io::Result<(Self, Vec<String>)> {
         let clock = sim.clock();
         let frame_every = frame_every(scene, sim);
         let on_interval = clock.step.is_multiple_of(frame_every);
@@ -237,13 +246,23 @@ impl RunOutput {
             curves: placed_curves(scene),
             series: Vec::new(),
             bodies: scene.bodies.iter().map(|b| b.name.clone()).collect(),
+            animation: animation(scene, sim, frame_every),
+            name: sim.name().to_owned(),
         };
         // The series as the checkpoint holds them, then appended to.
         for &record in sim.csv_records() {
             let file = output.open_series(record, sim.world(), true)?;
             output.series.push(file);
         }
-        Ok((output, gaps))
+        let mut notes: Vec<String> = gaps.into_iter().collect();
+        if output.animation.is_some() {
+            notes.push(format!(
+                "animation.gif shows the run from t = {:.6e} s, where it resumed; the frames before are in {}",
+                clock.time,
+                dir.join("vtk").display()
+            ));
+        }
+        Ok((output, notes))
     }
 
     /// Call after every step: appends the samples recorded in the step to
@@ -331,7 +350,24 @@ impl RunOutput {
         }
         self.plot_energy(energy, per)?;
         self.plot_probes(probes)?;
-        self.plot_snapshot(sim.name(), world.resource::<Grid>())
+        let grid = world.resource::<Grid>();
+        self.plot_snapshot(sim.name(), grid)?;
+        self.write_animation(grid)
+    }
+
+    /// Writes `animation.gif`, with the run's last frame, if the scene
+    /// asks for it.
+    fn write_animation(&mut self, grid: &Grid) -> std::io::Result<()> {
+        let Some(animation) = &mut self.animation else {
+            return Ok(());
+        };
+        if let Some(&(time, _)) = self.frames.last() {
+            animation.record_last(&self.buffers.columns(&self.name, time));
+        }
+        let marker = self.buffers.marker;
+        self.folder.write_file("animation.gif", |path| {
+            animation.write(path, marker, (grid.origin, grid.max()))
+        })
     }
 
     fn write_frame(&mut self, sim: &mut Simulation) -> std::io::Result<()> {
@@ -347,7 +383,11 @@ impl RunOutput {
         let name = format!("vtk/points_{:05}.vtu", self.frames.len());
         self.folder
             .write_file(&name, |path| write_point_frame(path, &frame))?;
-        self.frames.push((sim.clock().time, name));
+        let time = sim.clock().time;
+        self.frames.push((time, name));
+        if let Some(animation) = &mut self.animation {
+            animation.record(&b.columns(&self.name, time));
+        }
         if !b.outlines.is_empty() {
             let name = format!("vtk/blocks_{:05}.vtu", self.block_frames.len());
             self.folder.write_file(&name, |path| {
@@ -479,6 +519,16 @@ impl RunOutput {
     }
 }
 
+/// The animation the scene asks for, over the frames a run writes every
+/// `frame_every` steps.
+fn animation(scene: &Scene, sim: &Simulation, frame_every: u64) -> Option<Animation> {
+    let field = scene.output.animation?;
+    Some(Animation::new(
+        field,
+        sim.clock().total_steps() / frame_every + 2,
+    ))
+}
+
 /// Steps between frames: the scene's frame interval (its default follows
 /// the run's `time.end`) in whole steps, at least one.
 /// A line series for each of `names` over the curve of the same rank.
@@ -580,6 +630,20 @@ fn write_curve(
 }
 
 impl FrameBuffers {
+    /// The columns of the frame at `time` of the run `name`.
+    fn columns<'a>(&'a self, name: &'a str, time: Real) -> FrameColumns<'a> {
+        FrameColumns {
+            name,
+            time,
+            positions: &self.positions,
+            velocities: &self.velocities,
+            displacements: &self.displacements,
+            stresses: &self.stresses,
+            body: &self.body,
+            outlines: &self.outlines,
+        }
+    }
+
     /// Copies the current state of every body, in scene order.
     fn fill(&mut self, sim: &mut Simulation) {
         self.positions.clear();

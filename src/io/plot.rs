@@ -132,41 +132,108 @@ pub fn plot_points(
             values.len()
         )));
     }
-    let (lo, hi) = view;
-    let size = hi - lo;
-    if !(lo.is_finite() && hi.is_finite() && size.x > 0.0 && size.y > 0.0) {
-        return Err(invalid_input(format!(
-            "invalid view rectangle {lo} .. {hi}"
-        )));
-    }
+    let fitted = FittedView::new(view, marker_size)?;
     register_font()?;
-
-    // Size the image so that the plot area has the aspect ratio of the view, then widen the
-    // view along one axis to the plot area in case the height was clamped.
-    let chrome_width = COLORBAR_WIDTH + 2 * CHART_MARGIN + Y_LABEL_AREA;
-    let chrome_height = TITLE_HEIGHT + 2 * CHART_MARGIN + X_LABEL_AREA;
-    let plot_width = Real::from(SNAPSHOT_WIDTH - chrome_width);
-    let height =
-        (plot_width * size.y / size.x + Real::from(chrome_height)).clamp(300.0, 2000.0) as u32;
-    let plot_height = Real::from(height - chrome_height);
-    let pixels_per_unit = (plot_width / size.x).min(plot_height / size.y);
-    let center = 0.5 * (lo + hi);
-    let half = 0.5 * DVec2::new(plot_width, plot_height) / pixels_per_unit;
     let snapshot = Snapshot {
         title,
         value_label,
         positions,
         values,
-        marker_pixels: (marker_size * pixels_per_unit).ceil().clamp(1.0, 2000.0) as i32,
-        x_range: center.x - half.x..center.x + half.x,
-        y_range: center.y - half.y..center.y + half.y,
+        value_range: finite_range(values.iter().copied()),
+        marker_pixels: fitted.marker_pixels,
+        x_range: fitted.x_range.clone(),
+        y_range: fitted.y_range.clone(),
         outlines,
     };
-
-    let root = BitMapBackend::new(path, (SNAPSHOT_WIDTH, height)).into_drawing_area();
+    let root = BitMapBackend::new(path, (SNAPSHOT_WIDTH, fitted.height)).into_drawing_area();
     draw_snapshot(&root, &snapshot)
         .and_then(|()| root.present())
         .map_err(std::io::Error::other)
+}
+
+/// One frame of an animation: its title, and the points with their values
+/// and the block outlines at that time.
+pub struct AnimationFrame {
+    /// The frame's title (the scene and the time).
+    pub title: String,
+    /// The points' positions (m).
+    pub positions: Vec<DVec2>,
+    /// Their values.
+    pub values: Vec<Real>,
+    /// The block outlines.
+    pub outlines: Vec<Vec<DVec2>>,
+}
+
+/// Writes `frames` as an animated GIF at `path`, `delay_ms` between
+/// frames, in the look of [`plot_points`], with one colour scale over all
+/// frames so that colours compare across time.
+pub fn write_animation(
+    path: &Path,
+    frames: &[AnimationFrame],
+    value_label: &str,
+    marker_size: Real,
+    view: (DVec2, DVec2),
+    delay_ms: u32,
+) -> std::io::Result<()> {
+    let fitted = FittedView::new(view, marker_size)?;
+    register_font()?;
+    let value_range = finite_range(frames.iter().flat_map(|f| f.values.iter().copied()));
+    let root = BitMapBackend::gif(path, (SNAPSHOT_WIDTH, fitted.height), delay_ms)
+        .map_err(std::io::Error::other)?
+        .into_drawing_area();
+    for frame in frames {
+        let snapshot = Snapshot {
+            title: &frame.title,
+            value_label,
+            positions: &frame.positions,
+            values: &frame.values,
+            value_range,
+            marker_pixels: fitted.marker_pixels,
+            x_range: fitted.x_range.clone(),
+            y_range: fitted.y_range.clone(),
+            outlines: &frame.outlines,
+        };
+        draw_snapshot(&root, &snapshot)
+            .and_then(|()| root.present())
+            .map_err(std::io::Error::other)?;
+    }
+    Ok(())
+}
+
+/// A view rectangle fitted to a snapshot's plot area: the image's height
+/// (the plot area keeps the view's aspect ratio, the view widened along one
+/// axis where the height is clamped) and the markers' size in pixels.
+struct FittedView {
+    height: u32,
+    marker_pixels: i32,
+    x_range: Range<Real>,
+    y_range: Range<Real>,
+}
+
+impl FittedView {
+    fn new((lo, hi): (DVec2, DVec2), marker_size: Real) -> std::io::Result<Self> {
+        let size = hi - lo;
+        if !(lo.is_finite() && hi.is_finite() && size.x > 0.0 && size.y > 0.0) {
+            return Err(invalid_input(format!(
+                "invalid view rectangle {lo} .. {hi}"
+            )));
+        }
+        let chrome_width = COLORBAR_WIDTH + 2 * CHART_MARGIN + Y_LABEL_AREA;
+        let chrome_height = TITLE_HEIGHT + 2 * CHART_MARGIN + X_LABEL_AREA;
+        let plot_width = Real::from(SNAPSHOT_WIDTH - chrome_width);
+        let height =
+            (plot_width * size.y / size.x + Real::from(chrome_height)).clamp(300.0, 2000.0) as u32;
+        let plot_height = Real::from(height - chrome_height);
+        let pixels_per_unit = (plot_width / size.x).min(plot_height / size.y);
+        let center = 0.5 * (lo + hi);
+        let half = 0.5 * DVec2::new(plot_width, plot_height) / pixels_per_unit;
+        Ok(Self {
+            height,
+            marker_pixels: (marker_size * pixels_per_unit).ceil().clamp(1.0, 2000.0) as i32,
+            x_range: center.x - half.x..center.x + half.x,
+            y_range: center.y - half.y..center.y + half.y,
+        })
+    }
 }
 
 /// Everything `draw_snapshot` needs, with the view already fitted to the plot area.
@@ -175,6 +242,8 @@ struct Snapshot<'a> {
     value_label: &'a str,
     positions: &'a [DVec2],
     values: &'a [Real],
+    /// The range the colour scale spans.
+    value_range: Option<(Real, Real)>,
     marker_pixels: i32,
     x_range: Range<Real>,
     y_range: Range<Real>,
@@ -329,7 +398,7 @@ fn draw_snapshot<DB: DrawingBackend>(
         .axis_desc_style((FONT, 17))
         .draw()?;
 
-    let value_range = finite_range(snapshot.values.iter().copied());
+    let value_range = snapshot.value_range;
     let (side, x_range, y_range) = (snapshot.marker_pixels, &snapshot.x_range, &snapshot.y_range);
     chart.draw_series(
         snapshot

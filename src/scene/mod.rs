@@ -410,6 +410,34 @@ pub struct OutputSpec {
     /// Reaction–displacement curves of blocks (e.g. a pile's cone
     /// resistance against depth), written as `<name>.csv` and `<name>.png`.
     pub curves: Vec<CurveSpec>,
+    /// Writes `animation.gif` from the frames: the points coloured by this
+    /// field, the block outlines and the time. Default: none.
+    pub animation: Option<AnimatedField>,
+}
+
+/// The field an animation colours the points by.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum AnimatedField {
+    /// The displacement's magnitude |u| (m).
+    Displacement,
+    /// The velocity's magnitude |v| (m/s).
+    Velocity,
+    /// The mean stress p = (σ_xx + σ_yy + σ_zz) / 3 (Pa, tension positive).
+    MeanStress,
+    /// The body (its index in `bodies`).
+    Body,
+}
+
+impl AnimatedField {
+    /// The colour bar's label.
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Displacement => "|u| (m)",
+            Self::Velocity => "|v| (m/s)",
+            Self::MeanStress => "mean stress (Pa)",
+            Self::Body => "body",
+        }
+    }
 }
 
 /// A block's (or one part's) reaction against the block's displacement,
