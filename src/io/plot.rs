@@ -308,22 +308,22 @@ fn draw_series_chart<DB: DrawingBackend>(
             .flat_map(|s| s.points.iter().copied())
             .filter(|(x, y)| x.is_finite() && y.is_finite())
     };
+    let x_range = padded_range(samples().map(|(x, _)| x));
+    let y_range = padded_range(samples().map(|(_, y)| y));
+    let (x_span, y_span) = (x_range.end - x_range.start, y_range.end - y_range.start);
     let mut chart = ChartBuilder::on(&plot_area)
         .caption(title, (FONT, 26))
         .margin(15)
         .x_label_area_size(50)
         .y_label_area_size(80)
-        .build_cartesian_2d(
-            padded_range(samples().map(|(x, _)| x)),
-            padded_range(samples().map(|(_, y)| y)),
-        )?;
+        .build_cartesian_2d(x_range, y_range)?;
     chart
         .configure_mesh()
         .light_line_style(RGBColor(238, 238, 238))
         .x_desc(x_label)
         .y_desc(y_label)
-        .x_label_formatter(&|v| tick_label(*v))
-        .y_label_formatter(&|v| tick_label(*v))
+        .x_label_formatter(&|v| tick_label(*v, x_span))
+        .y_label_formatter(&|v| tick_label(*v, y_span))
         .label_style((FONT, 15))
         .axis_desc_style((FONT, 17))
         .draw()?;
@@ -389,11 +389,15 @@ fn draw_snapshot<DB: DrawingBackend>(
         .x_label_area_size(X_LABEL_AREA)
         .y_label_area_size(Y_LABEL_AREA)
         .build_cartesian_2d(snapshot.x_range.clone(), snapshot.y_range.clone())?;
+    let x_span = snapshot.x_range.end - snapshot.x_range.start;
+    let y_span = snapshot.y_range.end - snapshot.y_range.start;
     chart
         .configure_mesh()
         .disable_mesh()
         .x_desc("x (m)")
         .y_desc("y (m)")
+        .x_label_formatter(&|v| tick_label(*v, x_span))
+        .y_label_formatter(&|v| tick_label(*v, y_span))
         .label_style((FONT, 15))
         .axis_desc_style((FONT, 17))
         .draw()?;
@@ -544,12 +548,16 @@ fn trim_fraction_zeros(number: &str) -> &str {
     }
 }
 
-/// A short axis label: plain up to four digits, scientific beyond (or below
-/// 1e-3), so large values such as 4500000.0 Pa do not crowd the axis.
-fn tick_label(v: Real) -> String {
+/// A short label for a tick at `v` on an axis spanning `span`: plain up to
+/// four digits, scientific beyond (or below 1e-3), so large values such as
+/// 4500000.0 Pa do not crowd the axis. A tick within a billionth of the
+/// span of zero is zero (the axis's steps put it at 5.55e-17), and no
+/// label reads -0.
+fn tick_label(v: Real, span: Real) -> String {
+    let v = if v.abs() <= 1e-9 * span.abs() { 0.0 } else { v };
     let a = v.abs();
     if a == 0.0 || (1e-3..1e4).contains(&a) {
-        format!("{}", (v * 1e4).round() / 1e4)
+        format!("{}", (v * 1e4).round() / 1e4 + 0.0)
     } else {
         format!("{v:.2e}")
     }
@@ -776,9 +784,13 @@ mod tests {
 
     #[test]
     fn tick_labels_switch_to_scientific_for_large_and_tiny_values() {
-        assert_eq!(tick_label(4.5e6), "4.50e6");
-        assert_eq!(tick_label(0.25), "0.25");
-        assert_eq!(tick_label(0.0), "0");
-        assert_eq!(tick_label(-2e-5), "-2.00e-5");
+        assert_eq!(tick_label(4.5e6, 1e7), "4.50e6");
+        assert_eq!(tick_label(0.25, 1.0), "0.25");
+        assert_eq!(tick_label(0.0, 1.0), "0");
+        assert_eq!(tick_label(-2e-5, 1e-4), "-2.00e-5");
+        // A zero tick off by the rounding of the axis's steps, and one
+        // that rounds to minus zero.
+        assert_eq!(tick_label(5.551115123125783e-17, 0.4), "0");
+        assert_eq!(tick_label(-0.0, 1.0), "0");
     }
 }
