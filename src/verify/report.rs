@@ -182,7 +182,7 @@ fn markdown(command: &str, reports: &[CaseReport]) -> String {
                 count(report, Verdict::Reported)
             )
         } else {
-            "could not be measured | | ".to_string()
+            "could not be measured | |".to_string()
         };
         line(&format!(
             "| [{name}](#{name}) | {} | {counts} |",
