@@ -94,9 +94,10 @@ enum Command {
         repeats: u64,
     },
     /// Run the paper's validation cases at full size and measure each
-    /// against its target (the table is also written to OUT/verify.csv).
-    /// Exits with failure if a target is missed. All cases take about an
-    /// hour on 2 cores.
+    /// against its target (the table is also written to OUT/verify.csv;
+    /// with --report, a Markdown report with figures too). Exits with
+    /// failure if a target is missed. All cases take about an hour on 2
+    /// cores.
     Verify {
         /// Cases to run, by name [default: all]; see --list.
         cases: Vec<String>,
@@ -115,6 +116,11 @@ enum Command {
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
+        /// Also write DIR/verification.md, the cases' checks as a Markdown
+        /// report, and a figure per case of its computed curves against
+        /// their references in DIR/verification/ (e.g. --report docs/).
+        #[arg(long, value_name = "DIR")]
+        report: Option<PathBuf>,
     },
 }
 
@@ -167,12 +173,18 @@ fn main() -> ExitCode {
             out,
             threads,
             quiet,
+            report,
         } => {
             if list {
                 list_cases().map_err(Failure::Error)
             } else {
+                let places = VerifyPlaces {
+                    scenes: &scenes,
+                    out: &out,
+                    report: report.as_deref(),
+                };
                 with_threads(threads, || {
-                    verify(&cases, &scenes, &out, quiet).map_err(Failure::Error)
+                    verify(&cases, places, quiet).map_err(Failure::Error)
                 })
             }
         }
@@ -535,7 +547,32 @@ fn list_cases() -> Result<(), String> {
     Ok(())
 }
 
-fn verify(names: &[String], scenes: &Path, out: &Path, quiet: bool) -> Result<(), String> {
+/// Where `mpdem verify` reads its scenes and writes its table and report.
+#[derive(Clone, Copy)]
+struct VerifyPlaces<'a> {
+    scenes: &'a Path,
+    out: &'a Path,
+    report: Option<&'a Path>,
+}
+
+/// The `mpdem verify` command line that reproduces a report: the cases
+/// named, the scenes folder if not the default, and the report's folder.
+fn verify_command(names: &[String], scenes: &Path, report: &Path) -> String {
+    let mut command = vec!["mpdem verify".to_string()];
+    command.extend(names.iter().cloned());
+    if scenes != Path::new("scenes") {
+        command.push(format!("--scenes {}", scenes.display()));
+    }
+    command.push(format!("--report {}", report.display()));
+    command.join(" ")
+}
+
+fn verify(names: &[String], places: VerifyPlaces, quiet: bool) -> Result<(), String> {
+    let VerifyPlaces {
+        scenes,
+        out,
+        report: report_dir,
+    } = places;
     let cases = if names.is_empty() {
         CASES.iter().collect()
     } else {
@@ -585,6 +622,16 @@ fn verify(names: &[String], scenes: &Path, out: &Path, quiet: bool) -> Result<()
         reports.push(report);
         verify::write_table(&table, &reports)
             .map_err(|e| format!("{}: cannot write the table: {e}", table.display()))?;
+        if let Some(dir) = report_dir {
+            verify::report::write_report(dir, &verify_command(names, scenes, dir), &reports)
+                .map_err(|e| format!("cannot write the report: {e}"))?;
+        }
+    }
+    if let Some(dir) = report_dir {
+        say(&format!(
+            "verify: report in {}",
+            dir.join("verification.md").display()
+        ))?;
     }
     let count = |verdict| {
         reports

@@ -1,8 +1,9 @@
-//! PNG plots with `plotters`: line charts of time series and coloured snapshots of material points.
+//! PNG plots with `plotters`: line charts of time series and of curves against their references,
+//! and coloured snapshots of material points.
 //!
 //! Text is rendered with the DejaVu Sans font embedded by the `dejavu` crate (registered once with
 //! plotters' `ab_glyph` text backend), so plots look the same on every machine and need no system
-//! fonts. Both functions write PNG files and require the path to end in `.png`.
+//! fonts. Every function writes a PNG file and requires the path to end in `.png`.
 
 use crate::math::{DVec2, Real};
 use std::ops::Range;
@@ -10,6 +11,7 @@ use std::path::Path;
 use std::sync::OnceLock;
 
 use plotters::coord::Shift;
+use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
@@ -97,6 +99,149 @@ pub fn plot_series(
     draw_series_chart(&root, title, x_label, y_label, series)
         .and_then(|()| root.present())
         .map_err(std::io::Error::other)
+}
+
+/// One curve of [`plot_lines`].
+pub struct Line<'a> {
+    /// Legend entry, wrapped to the legend's width; an empty name leaves the curve out of the
+    /// legend.
+    pub name: &'a str,
+    /// Samples in drawing order; a sample with a non-finite coordinate breaks the line.
+    pub points: &'a [(Real, Real)],
+    /// Index of its colour among the series colours of [`plot_series`] (Tableau 10, then black
+    /// at 10), taken cyclically.
+    pub color: usize,
+    /// Dashed instead of solid.
+    pub dashed: bool,
+}
+
+/// Line chart of `size` pixels (width, height) with solid and dashed curves of chosen colours:
+/// title, axis labels, automatic ranges as [`plot_series`], and the legend in a column right of
+/// the chart (three tenths of the width, names wrapped), where it covers no curve.
+///
+/// Fails with `InvalidInput` if `path` does not end in `.png`, or with the error of rendering or
+/// writing the image.
+pub fn plot_lines(
+    path: &Path,
+    size: (u32, u32),
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    lines: &[Line],
+) -> std::io::Result<()> {
+    check_png_path(path)?;
+    register_font()?;
+    let root = BitMapBackend::new(path, size).into_drawing_area();
+    draw_lines_chart(&root, title, x_label, y_label, lines)
+        .and_then(|()| root.present())
+        .map_err(std::io::Error::other)
+}
+
+/// Draws the line chart of [`plot_lines`] on `root`.
+fn draw_lines_chart<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    lines: &[Line],
+) -> DrawResult<DB> {
+    root.fill(&WHITE)?;
+    let (width, _) = root.dim_in_pixel();
+    let legend_width = if lines.iter().any(|l| !l.name.is_empty()) {
+        width * 3 / 10
+    } else {
+        0
+    };
+    let (plot_area, legend_area) = root.split_horizontally(width - legend_width);
+    let samples = || {
+        lines
+            .iter()
+            .flat_map(|l| l.points.iter().copied())
+            .filter(|(x, y)| x.is_finite() && y.is_finite())
+    };
+    let mut chart = ChartBuilder::on(&plot_area)
+        .caption(title, (FONT, 22))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(75)
+        .build_cartesian_2d(
+            padded_range(samples().map(|(x, _)| x)),
+            padded_range(samples().map(|(_, y)| y)),
+        )?;
+    // A tick at zero can come out a rounding error off it (−5.55e-17).
+    let (x_range, y_range) = (chart.x_range(), chart.y_range());
+    let snapped = |v: Real, range: &Range<Real>| {
+        if v.abs() < 1e-9 * (range.end - range.start) {
+            0.0
+        } else {
+            v
+        }
+    };
+    chart
+        .configure_mesh()
+        .light_line_style(RGBColor(238, 238, 238))
+        .x_desc(x_label)
+        .y_desc(y_label)
+        .x_label_formatter(&|v| tick_label(snapped(*v, &x_range)))
+        .y_label_formatter(&|v| tick_label(snapped(*v, &y_range)))
+        .label_style((FONT, 14))
+        .axis_desc_style((FONT, 16))
+        .draw()?;
+
+    // About 7 pixels a character at the legend's 14-pixel font.
+    let columns = (legend_width.saturating_sub(50) / 7).max(10) as usize;
+    let mut y = 60;
+    for line in lines {
+        let color = SERIES_COLORS[line.color % SERIES_COLORS.len()];
+        let style = color.stroke_width(2);
+        for piece in line
+            .points
+            .split(|(x, y)| !(x.is_finite() && y.is_finite()))
+            .filter(|piece| !piece.is_empty())
+        {
+            let points = piece.iter().copied();
+            if line.dashed {
+                chart.draw_series(DashedLineSeries::new(points, 8, 5, style))?;
+            } else {
+                chart.draw_series(LineSeries::new(points, style))?;
+            }
+        }
+        if line.name.is_empty() {
+            continue;
+        }
+        let key = vec![(8, y), (36, y)];
+        if line.dashed {
+            legend_area.draw(&DashedPathElement::new(key, 8, 5, style))?;
+        } else {
+            legend_area.draw(&PathElement::new(key, style))?;
+        }
+        for text in wrap(line.name, columns) {
+            legend_area.draw(&Text::new(
+                text,
+                (42, y - 8),
+                (FONT, 14).into_font().color(&BLACK),
+            ))?;
+            y += 17;
+        }
+        y += 7;
+    }
+    Ok(())
+}
+
+/// `text` broken at spaces into lines of at most `columns` characters (a longer word gets a line
+/// of its own).
+fn wrap(text: &str, columns: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split_whitespace() {
+        match lines.last_mut() {
+            Some(line) if line.chars().count() + 1 + word.chars().count() <= columns => {
+                line.push(' ');
+                line.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
 }
 
 /// Snapshot of material points coloured by `values` with a viridis colour map.
@@ -610,6 +755,30 @@ mod tests {
         let path = test_dir("series").join("energy.png");
         plot_series(&path, "Kinetic energy", "time (s)", "energy (J)", &series).unwrap();
         assert_eq!(png_size(&path), (900, 600));
+    }
+
+    #[test]
+    fn line_chart_has_the_asked_size_and_wraps_its_legend() {
+        let computed: Vec<(f64, f64)> = (0..50).map(|i| (i as f64, (i as f64).sqrt())).collect();
+        let reference: Vec<(f64, f64)> = computed.iter().map(|&(x, y)| (x, 1.1 * y)).collect();
+        let lines = [
+            Line {
+                name: "computed",
+                points: &computed,
+                color: 0,
+                dashed: false,
+            },
+            Line {
+                name: "the reference, a name long enough to take two lines of the legend",
+                points: &reference,
+                color: 0,
+                dashed: true,
+            },
+        ];
+        let path = test_dir("lines").join("lines.png");
+        plot_lines(&path, (800, 500), "Lines", "x (m)", "y (m)", &lines).unwrap();
+        assert_eq!(png_size(&path), (800, 500));
+        assert_eq!(wrap("a name long enough", 8), ["a name", "long", "enough"]);
     }
 
     #[test]

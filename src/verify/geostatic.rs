@@ -2,7 +2,10 @@
 //! an elastic soil column settled under gravity, then under a 150 kPa
 //! surcharge, against σ_v = ρ g z and σ_h = K0 σ_v.
 
-use super::{Check, Context, VerifyError, base_stress, body, largest, percent, stages_as_planned};
+use super::{
+    Check, Context, Curve, Figure, Measured, VerifyError, base_stress, body, largest, percent,
+    stages_as_planned,
+};
 use crate::Simulation;
 use crate::math::Real;
 use crate::resources::{StageEndReason, StageLog};
@@ -35,12 +38,9 @@ pub fn base_stress_and_k0_error(
     Ok((base_stress(points), k0_error))
 }
 
-/// The largest departure, over the rows of points (by initial height X),
-/// of a row's mean σ_yy from ρ g (H − X) + `surcharge`: the weight of the
-/// soil above a row and the load on its surface. The rows nearest the
-/// surface show how the surcharge reaches the body (at the point centres,
-/// the top row carried 69%).
-pub fn worst_row_error(sim: &mut Simulation, surcharge: Real) -> Result<Real, VerifyError> {
+/// The mean σ_yy (Pa) of every row of points, by the row's initial
+/// height X (m), from the lowest row up.
+pub fn row_stresses(sim: &mut Simulation) -> Result<Vec<(Real, Real)>, VerifyError> {
     let points = body(sim, "soil")?;
     let mut rows: BTreeMap<i64, (Real, Real, usize)> = BTreeMap::new();
     for (x, s) in points.initial_position.iter().zip(&points.stress) {
@@ -51,14 +51,53 @@ pub fn worst_row_error(sim: &mut Simulation, surcharge: Real) -> Result<Real, Ve
         row.1 += s.yy;
         row.2 += 1;
     }
-    Ok(largest(rows.values().map(|&(height, sum, count)| {
-        let expected = -(DENSITY * GRAVITY * (HEIGHT - height) + surcharge);
-        (sum / count as Real / expected - 1.0).abs()
-    })))
+    Ok(rows
+        .values()
+        .map(|&(height, sum, count)| (height, sum / count as Real))
+        .collect())
+}
+
+/// The expected σ_yy (Pa) at initial height X: −(ρ g (H − X) +
+/// `surcharge`), the weight of the soil above and the load on its surface.
+fn expected_stress(height: Real, surcharge: Real) -> Real {
+    -(DENSITY * GRAVITY * (HEIGHT - height) + surcharge)
+}
+
+/// The largest departure, over `rows` ([`row_stresses`]), of a row's mean
+/// σ_yy from ρ g (H − X) + `surcharge`: the weight of the soil above a row
+/// and the load on its surface. The rows nearest the surface show how the
+/// surcharge reaches the body (at the point centres, the top row carried
+/// 69%).
+pub fn worst_row_error(rows: &[(Real, Real)], surcharge: Real) -> Real {
+    largest(
+        rows.iter()
+            .map(|&(height, mean)| (mean / expected_stress(height, surcharge) - 1.0).abs()),
+    )
+}
+
+/// The rows' σ_v (kPa, compression positive) against depth below the
+/// surface (m), computed (labelled with `stage`) and expected under
+/// `surcharge` (labelled `reference`).
+fn profile(rows: &[(Real, Real)], surcharge: Real, stage: &str, reference: &str) -> [Curve; 2] {
+    let depth = |height: Real| HEIGHT - height;
+    [
+        Curve::computed(
+            format!("mpdem, {stage}"),
+            rows.iter()
+                .map(|&(height, mean)| (depth(height), -mean / 1e3))
+                .collect(),
+        ),
+        Curve::reference(
+            reference,
+            rows.iter()
+                .map(|&(height, _)| (depth(height), -expected_stress(height, surcharge) / 1e3))
+                .collect(),
+        ),
+    ]
 }
 
 /// Both stages of the scene, measured at the end of each.
-pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
+pub fn run(ctx: &Context) -> Result<Measured, VerifyError> {
     let scene = ctx.scene("geostatic_column.ron")?;
     let run = "geostatic_column";
     let mut sim = ctx.start(run, &scene)?;
@@ -88,6 +127,7 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
     };
     let (base, k0_error) = base_stress_and_k0_error(&mut sim, k0)?;
     judge("geostatic stage", "ρ g z", base, geostatic, k0_error);
+    let geostatic_rows = row_stresses(&mut sim)?;
     ctx.advance(run, &mut sim, |_| false)?;
     let (base, k0_error) = base_stress_and_k0_error(&mut sim, k0)?;
     judge(
@@ -98,13 +138,15 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
         k0_error,
     );
     // The validation's 3% at every depth, the surface included.
-    let row_error = worst_row_error(&mut sim, SURCHARGE)?;
+    let rows = row_stresses(&mut sim)?;
+    let row_error = worst_row_error(&rows, SURCHARGE);
     checks.push(Check::judged(
         "150 kPa surcharge: every row of points' mean σ_v against ρ g z + 150 kPa at its initial depth",
         format!("largest departure {:.1}%", 100.0 * row_error),
         "within 3%",
         row_error <= 0.03,
-    ));
+    )
+    .because("the validation's 3% on σ_v, held at every depth, the surface included"));
     let (stages, as_planned) = stages_as_planned(
         &sim,
         &[
@@ -119,5 +161,22 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
         "geostatic then surcharge, each on its kinetic-energy condition, before half of time.end",
         as_planned && time < 0.5 * scene.time.end,
     ));
-    Ok(checks)
+    let mut figure = Figure::new(
+        "Soil column: σ_v of each row of points",
+        "depth below the surface z (m)",
+        "vertical stress σ_v (kPa, compression positive)",
+    );
+    figure
+        .curves
+        .extend(profile(&geostatic_rows, 0.0, "geostatic stage", "ρ g z"));
+    figure.curves.extend(profile(
+        &rows,
+        SURCHARGE,
+        "150 kPa surcharge",
+        "ρ g z + 150 kPa",
+    ));
+    Ok(Measured {
+        checks,
+        figures: vec![figure],
+    })
 }

@@ -18,6 +18,7 @@ pub mod geostatic;
 pub mod hertz;
 pub mod pile;
 pub mod quad4;
+pub mod report;
 pub mod rings;
 pub mod sliding;
 pub mod toppling;
@@ -64,6 +65,8 @@ pub struct Check {
     pub target: String,
     /// Whether the target is met.
     pub verdict: Verdict,
+    /// Why the target or its tolerance is what it is, where the case says.
+    pub reason: Option<String>,
 }
 
 impl Check {
@@ -79,6 +82,7 @@ impl Check {
             measured: measured.into(),
             target: target.into(),
             verdict: if met { Verdict::Met } else { Verdict::Missed },
+            reason: None,
         }
     }
 
@@ -93,8 +97,102 @@ impl Check {
             measured: measured.into(),
             target: published.into(),
             verdict: Verdict::Reported,
+            reason: None,
         }
     }
+
+    /// The check with the reason for its target or tolerance.
+    pub fn because(mut self, reason: impl Into<String>) -> Self {
+        self.reason = Some(reason.into());
+        self
+    }
+}
+
+/// Whether a curve of a [`Figure`] is the case's result or what it is
+/// compared with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CurveKind {
+    /// Computed by the case's runs.
+    Computed,
+    /// The reference a check compares with: an exact solution, a law, a
+    /// reference computation or published values.
+    Reference,
+}
+
+/// One labelled curve of a [`Figure`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Curve {
+    /// Legend entry.
+    pub label: String,
+    /// (x, y) samples in drawing order.
+    pub points: Vec<(Real, Real)>,
+    /// Computed or reference.
+    pub kind: CurveKind,
+}
+
+impl Curve {
+    /// A curve computed by the case's runs.
+    pub fn computed(label: impl Into<String>, points: Vec<(Real, Real)>) -> Self {
+        Curve {
+            label: label.into(),
+            points,
+            kind: CurveKind::Computed,
+        }
+    }
+
+    /// A reference curve.
+    pub fn reference(label: impl Into<String>, points: Vec<(Real, Real)>) -> Self {
+        Curve {
+            label: label.into(),
+            points,
+            kind: CurveKind::Reference,
+        }
+    }
+}
+
+/// A case's computed curves beside their references, for the report.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Figure {
+    /// Title above the chart.
+    pub title: String,
+    /// The x axis's quantity and unit.
+    pub x_label: String,
+    /// The y axis's quantity and unit.
+    pub y_label: String,
+    /// The curves, in legend order.
+    pub curves: Vec<Curve>,
+}
+
+impl Figure {
+    /// A figure without curves yet.
+    pub fn new(
+        title: impl Into<String>,
+        x_label: impl Into<String>,
+        y_label: impl Into<String>,
+    ) -> Self {
+        Figure {
+            title: title.into(),
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            curves: Vec::new(),
+        }
+    }
+
+    /// The figure with `curve` added.
+    pub fn with(mut self, curve: Curve) -> Self {
+        self.curves.push(curve);
+        self
+    }
+}
+
+/// What a case measured: its checks, and the figures of its curves
+/// against their references (none where it has no curve).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Measured {
+    /// The checks, in the order printed.
+    pub checks: Vec<Check>,
+    /// The figures, in the order shown.
+    pub figures: Vec<Figure>,
 }
 
 /// A validation case.
@@ -108,7 +206,7 @@ pub struct Case {
     /// Rough cost in minutes on 2 cores, in release (measured).
     pub minutes: Real,
     /// Runs the case and measures it.
-    pub run: fn(&Context) -> Result<Vec<Check>, VerifyError>,
+    pub run: fn(&Context) -> Result<Measured, VerifyError>,
 }
 
 /// Every case: the quick ones in the paper's order, then the long ones.
@@ -190,14 +288,14 @@ pub fn case(name: &str) -> Option<&'static Case> {
     CASES.iter().find(|c| c.name == name)
 }
 
-/// What a case gave: its checks, or why it could not be measured, and how
-/// long it took.
+/// What a case gave: its checks and figures, or why it could not be
+/// measured, and how long it took.
 #[derive(Debug)]
 pub struct CaseReport {
     /// The case's name.
     pub case: &'static str,
-    /// Its checks, or why it could not be measured.
-    pub outcome: Result<Vec<Check>, VerifyError>,
+    /// Its checks and figures, or why it could not be measured.
+    pub outcome: Result<Measured, VerifyError>,
     /// Wall-clock time it took (s).
     pub seconds: f64,
 }
@@ -216,7 +314,12 @@ impl CaseReport {
 
     /// The checks (none if the case could not be measured).
     pub fn checks(&self) -> &[Check] {
-        self.outcome.as_deref().unwrap_or(&[])
+        self.outcome.as_ref().map_or(&[], |m| &m.checks)
+    }
+
+    /// The figures (none if the case could not be measured).
+    pub fn figures(&self) -> &[Figure] {
+        self.outcome.as_ref().map_or(&[], |m| &m.figures)
     }
 
     /// Whether the case was measured and no check missed its target.
@@ -231,7 +334,7 @@ impl std::fmt::Display for CaseReport {
     fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
         writeln!(f, "{} ({:.0} s)", self.case, self.seconds)?;
         match &self.outcome {
-            Ok(checks) => checks.iter().try_for_each(|c| {
+            Ok(measured) => measured.checks.iter().try_for_each(|c| {
                 writeln!(
                     f,
                     "  {:<8} {}: {} (target: {})",
@@ -259,7 +362,8 @@ pub fn write_table(path: &Path, reports: &[CaseReport]) -> std::io::Result<()> {
     writeln!(out, "case,quantity,measured,target,verdict")?;
     for report in reports {
         let rows: Vec<[String; 4]> = match &report.outcome {
-            Ok(checks) => checks
+            Ok(measured) => measured
+                .checks
                 .iter()
                 .map(|c| {
                     [

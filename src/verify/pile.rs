@@ -5,7 +5,7 @@
 //! Susila and Hryciw's finite elements, where q_c is the tip's force over
 //! its area.
 
-use super::{Check, Context, VerifyError};
+use super::{Check, Context, Curve, Figure, Measured, VerifyError};
 use crate::Simulation;
 use crate::io::csv::write_curve;
 use crate::io::plot::{Series, SeriesStyle, plot_series};
@@ -73,8 +73,8 @@ const PLATEAU: (Real, Real) = (4e6, 6e6);
 
 /// The full scene (about 8 minutes on 2 cores); q_c is written to
 /// `OUT/pile_penetration/qc.csv` and plotted to `qc.png`.
-pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
-    let (plateau, mut checks) = measure(ctx, "pile_penetration", "mpdem, half model")?;
+pub fn run(ctx: &Context) -> Result<Measured, VerifyError> {
+    let (plateau, mut checks, figure) = measure(ctx, "pile_penetration", "mpdem, half model")?;
     checks.insert(
         1,
         Check::judged(
@@ -82,23 +82,27 @@ pub fn run(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
             format!("{:.2} MPa", plateau / 1e6),
             "4–6 MPa (Susila and Hryciw: about 5 MPa)",
             (PLATEAU.0..=PLATEAU.1).contains(&plateau),
-        ),
+        )
+        .because("the plateau the paper compares with, Susila and Hryciw's about 5 MPa"),
     );
     checks.push(Check::reported(
         "the same over z/R ≥ 6 read as the whole cone's 2 f_c / R",
         format!("{:.2} MPa", 2.0 * plateau / 1e6),
         "4–6 MPa, if the paper's f_c is the whole cone's",
     ));
-    Ok(checks)
+    Ok(Measured {
+        checks,
+        figures: vec![figure],
+    })
 }
 
 /// The same pile as a body of revolution (`pile_penetration_axisymmetric`,
 /// about 4.5 minutes on 2 cores), the geometry of Susila and Hryciw's finite
 /// elements: q_c = 2 f_c / R² is compared with their plateau, reported (the
 /// judged target is the paper's plane-strain scene's).
-pub fn run_axisymmetric(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
+pub fn run_axisymmetric(ctx: &Context) -> Result<Measured, VerifyError> {
     let name = "pile_penetration_axisymmetric";
-    let (plateau, mut checks) = measure(ctx, name, "mpdem, axisymmetric")?;
+    let (plateau, mut checks, figure) = measure(ctx, name, "mpdem, axisymmetric")?;
     checks.insert(
         1,
         Check::reported(
@@ -107,13 +111,21 @@ pub fn run_axisymmetric(ctx: &Context) -> Result<Vec<Check>, VerifyError> {
             "4–6 MPa (Susila and Hryciw's axisymmetric finite elements: about 5 MPa)",
         ),
     );
-    Ok(checks)
+    Ok(Measured {
+        checks,
+        figures: vec![figure],
+    })
 }
 
 /// Runs the scene `NAME.ron`, writes its q_c curve to `OUT/NAME/qc.csv`
 /// and `qc.png` (the measured line named `label`), checks its stages and
-/// reports its profile; returns its mean q_c over z/R ≥ 6 with the checks.
-fn measure(ctx: &Context, name: &str, label: &str) -> Result<(Real, Vec<Check>), VerifyError> {
+/// reports its profile; returns its mean q_c over z/R ≥ 6 with the checks
+/// and the figure of q_c against the published plateau.
+fn measure(
+    ctx: &Context,
+    name: &str,
+    label: &str,
+) -> Result<(Real, Vec<Check>, Figure), VerifyError> {
     let scene = ctx.scene(&format!("{name}.ron"))?;
     let sim = ctx.run(name, &scene)?;
     let curve = cone_resistance(&sim, RADIUS)?;
@@ -163,7 +175,33 @@ fn measure(ctx: &Context, name: &str, label: &str) -> Result<(Real, Vec<Check>),
         "a plateau of about 5 MPa from z/R ≈ 3 (paper Fig. 16)",
     ));
     let plateau = mean_between(&curve, 6.0, Real::INFINITY).unwrap_or(Real::NAN);
-    Ok((plateau, checks))
+    Ok((plateau, checks, figure(&curve, label)))
+}
+
+/// q_c (MPa) against z / R, named `label`, beside the published plateau's
+/// bounds.
+fn figure(curve: &[(Real, Real, Real)], label: &str) -> Figure {
+    let end = curve.last().map_or(9.0, |c| c.1);
+    let (low, high) = (PLATEAU.0 / 1e6, PLATEAU.1 / 1e6);
+    Figure::new(
+        "Cone resistance against depth, pile penetration",
+        "depth of the tip z / R",
+        "cone resistance q_c (MPa)",
+    )
+    .with(Curve::computed(
+        label,
+        curve.iter().map(|&(_, z, q)| (z, q / 1e6)).collect(),
+    ))
+    .with(Curve::reference(
+        "published plateau, 4–6 MPa (Susila and Hryciw)",
+        vec![
+            (0.0, low),
+            (end, low),
+            (Real::NAN, Real::NAN),
+            (0.0, high),
+            (end, high),
+        ],
+    ))
 }
 
 /// q_c against z / R with the published band.
