@@ -158,7 +158,7 @@ pub enum RunError {
         dir: PathBuf,
         /// Whether a checkpoint was written at the stop, if the run writes
         /// them.
-        checkpoint: Option<Result<(), CheckpointError>>,
+        checkpoint: Option<Result<(), Box<CheckpointError>>>,
     },
 }
 
@@ -361,8 +361,8 @@ impl Runner {
         // A stopped run's checkpoint first: it matters more than the plots.
         let now = sim.clock();
         let stopped = failure.is_none() && !now.finished();
-        let stop_checkpoint =
-            (stopped && checkpoint_steps.is_some()).then(|| sim.write_checkpoint(&checkpoint));
+        let stop_checkpoint = (stopped && checkpoint_steps.is_some())
+            .then(|| sim.write_checkpoint(&checkpoint).map_err(Box::new));
         if let Err(e) = output.finish(sim, failure.is_some()) {
             let written = format!("cannot write the output: {e}");
             let message = match failure {

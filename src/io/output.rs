@@ -4,7 +4,7 @@
 use super::animation::{Animation, FrameColumns};
 use super::csv::{self, CsvRecord};
 use super::manifest::OutputManifest;
-use super::plot::{Series, SeriesStyle, plot_points, plot_series};
+use super::plot::{Series, plot_points, plot_series};
 use super::vtk::{
     PointFrame, read_collection, write_collection, write_outlines, write_point_frame,
 };
@@ -538,11 +538,7 @@ fn lines<'a>(
 ) -> Vec<Series<'a>> {
     names
         .zip(curves)
-        .map(|(name, points)| Series {
-            name,
-            points,
-            style: SeriesStyle::Line,
-        })
+        .map(|(name, points)| Series { name, points })
         .collect()
 }
 
@@ -623,7 +619,6 @@ fn write_curve(
             &[Series {
                 name: "",
                 points: &points,
-                style: SeriesStyle::Line,
             }],
         )
     })

@@ -67,17 +67,6 @@ pub struct Series<'a> {
     pub name: &'a str,
     /// Samples in drawing order; samples with a non-finite coordinate are skipped.
     pub points: &'a [(Real, Real)],
-    /// How the samples are drawn.
-    pub style: SeriesStyle,
-}
-
-/// How a curve is drawn.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SeriesStyle {
-    /// Straight segments joining consecutive samples.
-    Line,
-    /// A filled circle at each sample.
-    Markers,
 }
 
 /// Line chart with title, axis labels, legend and automatic ranges (padded 5%, with a sensible
@@ -168,22 +157,15 @@ fn draw_lines_chart<DB: DrawingBackend>(
             padded_range(samples().map(|(x, _)| x)),
             padded_range(samples().map(|(_, y)| y)),
         )?;
-    // A tick at zero can come out a rounding error off it (−5.55e-17).
     let (x_range, y_range) = (chart.x_range(), chart.y_range());
-    let snapped = |v: Real, range: &Range<Real>| {
-        if v.abs() < 1e-9 * (range.end - range.start) {
-            0.0
-        } else {
-            v
-        }
-    };
+    let (x_span, y_span) = (x_range.end - x_range.start, y_range.end - y_range.start);
     chart
         .configure_mesh()
         .light_line_style(RGBColor(238, 238, 238))
         .x_desc(x_label)
         .y_desc(y_label)
-        .x_label_formatter(&|v| tick_label(snapped(*v, &x_range)))
-        .y_label_formatter(&|v| tick_label(snapped(*v, &y_range)))
+        .x_label_formatter(&|v| tick_label(*v, x_span))
+        .y_label_formatter(&|v| tick_label(*v, y_span))
         .label_style((FONT, 14))
         .axis_desc_style((FONT, 16))
         .draw()?;
@@ -481,25 +463,13 @@ fn draw_series_chart<DB: DrawingBackend>(
             .iter()
             .copied()
             .filter(|(x, y)| x.is_finite() && y.is_finite());
-        match s.style {
-            SeriesStyle::Line => {
-                chart.draw_series(LineSeries::new(points, color.stroke_width(2)))?;
-            }
-            SeriesStyle::Markers => {
-                chart.draw_series(points.map(|p| Circle::new(p, 3, color.filled())))?;
-            }
-        }
+        chart.draw_series(LineSeries::new(points, color.stroke_width(2)))?;
         if !s.name.is_empty() {
             let y = 70 + 24 * row;
-            match s.style {
-                SeriesStyle::Line => legend_area.draw(&PathElement::new(
-                    vec![(10, y), (34, y)],
-                    color.stroke_width(2),
-                ))?,
-                SeriesStyle::Markers => {
-                    legend_area.draw(&Circle::new((22, y), 3, color.filled()))?
-                }
-            }
+            legend_area.draw(&PathElement::new(
+                vec![(10, y), (34, y)],
+                color.stroke_width(2),
+            ))?;
             legend_area.draw(&Text::new(
                 s.name.to_string(),
                 (42, y - 8),
@@ -744,12 +714,10 @@ mod tests {
             Series {
                 name: "sin(t)",
                 points: &sine,
-                style: SeriesStyle::Line,
             },
             Series {
                 name: "measured",
                 points: &measured,
-                style: SeriesStyle::Markers,
             },
         ];
         let path = test_dir("series").join("energy.png");
@@ -794,11 +762,7 @@ mod tests {
             ("empty", &[]),
         ] {
             let path = dir.join(format!("{name}.png"));
-            let series = [Series {
-                name,
-                points,
-                style: SeriesStyle::Line,
-            }];
+            let series = [Series { name, points }];
             plot_series(&path, name, "x", "y", &series).unwrap();
             assert_eq!(png_size(&path), (900, 600));
         }

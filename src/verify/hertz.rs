@@ -10,7 +10,7 @@
 use super::elastic_disk::{ElasticDisk, WallSample};
 use super::{Check, Context, Curve, Figure, Measured, VerifyError, body, first, percent};
 use crate::Simulation;
-use crate::io::plot::{Series, SeriesStyle, plot_series};
+use crate::io::plot::{Series, plot_series};
 use crate::materials::{LinearElastic, MaterialModel};
 use crate::math::{DVec2, Real};
 use crate::resources::BodyPairLog;
@@ -739,16 +739,11 @@ pub fn plot(
     let mut series: Vec<Series> = scaled
         .iter()
         .zip(&labels)
-        .map(|(points, name)| Series {
-            name,
-            points,
-            style: SeriesStyle::Line,
-        })
+        .map(|(points, name)| Series { name, points })
         .collect();
     series.push(Series {
         name: "Hertz: F = π E* a² / (4 R*)",
         points: &analytical,
-        style: SeriesStyle::Line,
     });
     plot_series(
         path,

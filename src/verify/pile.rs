@@ -8,7 +8,7 @@
 use super::{Check, Context, Curve, Figure, Measured, VerifyError};
 use crate::Simulation;
 use crate::io::csv::write_curve;
-use crate::io::plot::{Series, SeriesStyle, plot_series};
+use crate::io::plot::{Series, plot_series};
 use crate::math::Real;
 use crate::resources::{BlockLog, Geometry, Settings, StageEndReason, StageLog};
 use std::path::Path;
@@ -219,17 +219,14 @@ fn plot(path: &Path, curve: &[(Real, Real, Real)], label: &str) -> Result<(), Ve
             Series {
                 name: label,
                 points: &measured,
-                style: SeriesStyle::Line,
             },
             Series {
                 name: "published plateau, 4 and 6 MPa",
                 points: &low,
-                style: SeriesStyle::Line,
             },
             Series {
                 name: "",
                 points: &high,
-                style: SeriesStyle::Line,
             },
         ],
     )
