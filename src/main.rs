@@ -3,8 +3,9 @@
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use mpdem::StepError;
 use mpdem::runner::{Progress, RunError, RunOptions, Runner, Start};
-use mpdem::scene::Scene;
+use mpdem::scene::{Scene, SceneError};
 use mpdem::verify::{CASES, Case, CaseReport, Context, RunEvent, Verdict};
 use mpdem::{Simulation, bench, verify};
 use std::io::{IsTerminal, Write};
@@ -151,7 +152,7 @@ fn main() -> ExitCode {
             };
             run(&scene, request)
         }),
-        Command::Check { scenes } => check_all(&scenes).map_err(Failure::Error),
+        Command::Check { scenes } => check_all(&scenes),
         Command::Bench {
             points,
             steps,
@@ -159,12 +160,9 @@ fn main() -> ExitCode {
             scene,
             warmup,
             repeats,
-        } => with_threads(threads, || {
-            match scene {
-                Some(path) => bench_scene(&path, warmup, steps),
-                None => run_bench(points as usize, warmup, steps, repeats as usize),
-            }
-            .map_err(Failure::Error)
+        } => with_threads(threads, || match scene {
+            Some(path) => bench_scene(&path, warmup, steps),
+            None => run_bench(points as usize, warmup, steps, repeats as usize),
         }),
         Command::Verify {
             cases,
@@ -176,27 +174,25 @@ fn main() -> ExitCode {
             report,
         } => {
             if list {
-                list_cases().map_err(Failure::Error)
+                list_cases()
             } else {
                 let places = VerifyPlaces {
                     scenes: &scenes,
                     out: &out,
                     report: report.as_deref(),
                 };
-                with_threads(threads, || {
-                    verify(&cases, places, quiet).map_err(Failure::Error)
-                })
+                with_threads(threads, || verify(&cases, places, quiet))
             }
         }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(Failure::Stopped(message)) => {
-            say_err(&message);
+        Err(stopped @ Failure::Run(RunError::Stopped { .. })) => {
+            say_err(&stopped.to_string());
             ExitCode::from(STOPPED_STATUS)
         }
-        Err(Failure::Error(message)) => {
-            say_err(&format!("error: {message}"));
+        Err(failure) => {
+            say_err(&format!("error: {failure}"));
             ExitCode::FAILURE
         }
     }
@@ -207,26 +203,89 @@ fn main() -> ExitCode {
 const STOPPED_STATUS: u8 = 130;
 
 /// Why a command did not succeed.
+#[derive(Debug, thiserror::Error)]
 enum Failure {
-    /// A run stopped on request, its results written.
-    Stopped(String),
-    /// Anything else.
-    Error(String),
+    /// Writing to standard output failed (not a closed pipe).
+    #[error("cannot write to standard output: {0}")]
+    Stdout(std::io::Error),
+    /// `--threads 0`.
+    #[error("--threads must be at least 1")]
+    NoThreads,
+    /// The thread pool could not be started.
+    #[error("cannot start {}: {source}", threads.map_or("the threads".to_string(), |n| format!("{n} threads")))]
+    Threads {
+        /// The threads asked for.
+        threads: Option<usize>,
+        /// What failed.
+        source: rayon::ThreadPoolBuildError,
+    },
+    /// A scene could not be read or built.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// A step failed.
+    #[error(transparent)]
+    Step(#[from] StepError),
+    /// A run failed, or stopped on request with its results written.
+    #[error(transparent)]
+    Run(#[from] RunError),
+    /// Of several scenes checked, some were refused (each told before).
+    #[error("{refused} of {checked} scenes refused")]
+    Refused {
+        /// How many were refused.
+        refused: usize,
+        /// How many were checked.
+        checked: usize,
+    },
+    /// `mpdem verify` was asked for a case it does not have.
+    #[error("no case '{name}'; the cases are {}", CASES.iter().map(|c| c.name).collect::<Vec<_>>().join(", "))]
+    UnknownCase {
+        /// The name asked for.
+        name: String,
+    },
+    /// No scenes folder where `verify` looks.
+    #[error("no scenes folder at {}: run from the repository's root or pass --scenes", .0.display())]
+    NoScenes(PathBuf),
+    /// The verify table could not be written.
+    #[error("{}: cannot write the table: {source}", path.display())]
+    VerifyTable {
+        /// The table.
+        path: PathBuf,
+        /// What failed.
+        source: std::io::Error,
+    },
+    /// The verify report could not be written.
+    #[error("cannot write the report: {0}")]
+    Report(#[from] verify::report::ReportError),
+    /// Verify cases missed their targets or could not be run.
+    #[error("{}", verify_problems(*missed, failed))]
+    Verify {
+        /// Checks that missed their target.
+        missed: usize,
+        /// Cases that could not be run.
+        failed: Vec<String>,
+    },
 }
 
-impl From<String> for Failure {
-    fn from(message: String) -> Self {
-        Self::Error(message)
+/// What a verify run that did not pass says of itself.
+fn verify_problems(missed: usize, failed: &[String]) -> String {
+    let mut problems = Vec::new();
+    if missed > 0 {
+        problems.push(format!("{missed} checks missed their target"));
     }
+    if !failed.is_empty() {
+        problems.push(format!(
+            "these cases could not be run: {}",
+            failed.join(", ")
+        ));
+    }
+    problems.join("; ")
 }
 
 /// Prints a line on standard output. A closed pipe (`| head`) drops it;
 /// any other failure (a full disk) is an error.
-fn say(line: &str) -> Result<(), String> {
+fn say(line: &str) -> Result<(), Failure> {
     match writeln!(std::io::stdout(), "{line}") {
-        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
-            Err(format!("cannot write to standard output: {e}"))
-        }
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Failure::Stdout(e)),
         _ => Ok(()),
     }
 }
@@ -241,51 +300,51 @@ fn say_err(line: &str) {
 /// per core or `RAYON_NUM_THREADS`). The step runs on one of the pool's
 /// threads: work handed to the pool from outside it goes through a shared
 /// queue that allocates, work from inside does not.
-fn with_threads<E: From<String> + Send>(
+fn with_threads(
     threads: Option<usize>,
-    f: impl FnOnce() -> Result<(), E> + Send,
-) -> Result<(), E> {
+    f: impl FnOnce() -> Result<(), Failure> + Send,
+) -> Result<(), Failure> {
     // The main thread's usual stack, 8 MiB, for the scene parsing and
     // stepping that now run on a worker (rayon's default is 2 MiB).
     let mut pool = rayon::ThreadPoolBuilder::new().stack_size(8 << 20);
     match threads {
         None => {}
-        Some(0) => return Err(String::from("--threads must be at least 1").into()),
+        Some(0) => return Err(Failure::NoThreads),
         Some(n) => pool = pool.num_threads(n),
     }
     pool.build()
-        .map_err(|e| match threads {
-            Some(n) => format!("cannot start {n} threads: {e}"),
-            None => format!("cannot start the threads: {e}"),
-        })
-        .map_err(E::from)?
+        .map_err(|source| Failure::Threads { threads, source })?
         .install(f)
 }
 
 /// Checks every scene, reporting each accepted one as it comes; an error
 /// if any is refused (the last refusal's message, the others printed
 /// before it).
-fn check_all(paths: &[PathBuf]) -> Result<(), String> {
+fn check_all(paths: &[PathBuf]) -> Result<(), Failure> {
     let mut refused = Vec::new();
     for path in paths {
-        if let Err(message) = check(path) {
-            refused.push(message);
+        if let Err(failure) = check(path) {
+            refused.push(failure);
         }
     }
     match refused.pop() {
         None => Ok(()),
+        Some(last) if paths.len() == 1 => Err(last),
         Some(last) => {
-            for message in refused {
-                say_err(&format!("error: {message}"));
+            for failure in refused.iter().chain([&last]) {
+                say_err(&format!("error: {failure}"));
             }
-            Err(last)
+            Err(Failure::Refused {
+                refused: refused.len() + 1,
+                checked: paths.len(),
+            })
         }
     }
 }
 
-fn check(path: &Path) -> Result<(), String> {
-    let scene = Scene::load(path).map_err(|e| e.to_string())?;
-    let sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
+fn check(path: &Path) -> Result<(), Failure> {
+    let scene = Scene::load(path)?;
+    let sim = Simulation::from_scene(&scene)?;
     for w in sim.warnings() {
         say_err(&format!("warning: {w}"));
     }
@@ -318,7 +377,7 @@ struct RunRequest<'a> {
 }
 
 fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
-    let scene = Scene::load(path).map_err(|e| Failure::Error(e.to_string()))?;
+    let scene = Scene::load(path)?;
     let out = request.out.map_or_else(
         || Path::new("out").join(scene.display_name()),
         Path::to_path_buf,
@@ -329,8 +388,7 @@ fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
         start: request.start,
         replace_other_scene: request.overwrite,
     };
-    let mut runner =
-        Runner::new(&scene, Some(path), options).map_err(|e| Failure::Error(e.to_string()))?;
+    let mut runner = Runner::new(&scene, Some(path), options)?;
     for w in runner.warnings() {
         say_err(&format!("warning: {w}"));
     }
@@ -384,10 +442,8 @@ fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
             summary.elapsed.as_secs_f64(),
             summary.state_hash,
             summary.dir.display()
-        ))
-        .map_err(Failure::Error),
-        Err(e @ RunError::Stopped { .. }) => Err(Failure::Stopped(e.to_string())),
-        Err(e) => Err(Failure::Error(e.to_string())),
+        )),
+        Err(e) => Err(e.into()),
     }
 }
 
@@ -437,8 +493,8 @@ fn progress_bar(total: u64, quiet: bool, template: &str) -> ProgressBar {
     bar
 }
 
-fn bench_scene(path: &Path, warmup: u64, steps: u64) -> Result<(), String> {
-    let scene = Scene::load(path).map_err(|e| e.to_string())?;
+fn bench_scene(path: &Path, warmup: u64, steps: u64) -> Result<(), Failure> {
+    let scene = Scene::load(path)?;
     let mut runs = vec![("", scene.clone())];
     if !scene.body_contacts.is_empty() {
         let mut without = scene;
@@ -446,8 +502,8 @@ fn bench_scene(path: &Path, warmup: u64, steps: u64) -> Result<(), String> {
         runs.push((" without body contacts", without));
     }
     for (label, scene) in runs {
-        let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
-        let t = bench::measure(&mut sim, warmup, steps).map_err(|e| e.to_string())?;
+        let mut sim = Simulation::from_scene(&scene)?;
+        let t = bench::measure(&mut sim, warmup, steps)?;
         say(&format!(
             "{}{label}: {} points, {} steps after {warmup}, {}: {:.3} s, {:.2} M particle-updates/s",
             sim.name(),
@@ -461,7 +517,7 @@ fn bench_scene(path: &Path, warmup: u64, steps: u64) -> Result<(), String> {
     Ok(())
 }
 
-fn run_bench(points: usize, warmup: u64, steps: u64, repeats: usize) -> Result<(), String> {
+fn run_bench(points: usize, warmup: u64, steps: u64, repeats: usize) -> Result<(), Failure> {
     let scenes = [
         (
             "elastic block on the grid's fixed base",
@@ -474,8 +530,8 @@ fn run_bench(points: usize, warmup: u64, steps: u64, repeats: usize) -> Result<(
     ];
     let mut sims = Vec::new();
     for (_, scene) in &scenes {
-        let mut sim = Simulation::from_scene(scene).map_err(|e| e.to_string())?;
-        bench::measure(&mut sim, warmup, 0).map_err(|e| e.to_string())?;
+        let mut sim = Simulation::from_scene(scene)?;
+        bench::measure(&mut sim, warmup, 0)?;
         sims.push(sim);
     }
     // The two blocks are timed in turn, so that a slow spell of the machine
@@ -484,7 +540,7 @@ fn run_bench(points: usize, warmup: u64, steps: u64, repeats: usize) -> Result<(
     let mut points_of = [0; 2];
     for _ in 0..repeats {
         for (k, sim) in sims.iter_mut().enumerate() {
-            let t = bench::measure(sim, 0, steps).map_err(|e| e.to_string())?;
+            let t = bench::measure(sim, 0, steps)?;
             points_of[k] = t.points;
             seconds[k].push(t.seconds);
         }
@@ -534,7 +590,7 @@ fn median_and_spread(values: &[f64]) -> (f64, f64) {
     (median, spread)
 }
 
-fn list_cases() -> Result<(), String> {
+fn list_cases() -> Result<(), Failure> {
     let width = |f: fn(&Case) -> &str| CASES.iter().map(|c| f(c).chars().count()).max();
     let name = width(|c| c.name).unwrap_or(0);
     let source = width(|c| c.source).unwrap_or(0);
@@ -567,7 +623,7 @@ fn verify_command(names: &[String], scenes: &Path, report: &Path) -> String {
     command.join(" ")
 }
 
-fn verify(names: &[String], places: VerifyPlaces, quiet: bool) -> Result<(), String> {
+fn verify(names: &[String], places: VerifyPlaces, quiet: bool) -> Result<(), Failure> {
     let VerifyPlaces {
         scenes,
         out,
@@ -578,19 +634,11 @@ fn verify(names: &[String], places: VerifyPlaces, quiet: bool) -> Result<(), Str
     } else {
         names
             .iter()
-            .map(|name| {
-                verify::case(name).ok_or_else(|| {
-                    let known: Vec<&str> = CASES.iter().map(|c| c.name).collect();
-                    format!("no case '{name}'; the cases are {}", known.join(", "))
-                })
-            })
+            .map(|name| verify::case(name).ok_or(Failure::UnknownCase { name: name.clone() }))
             .collect::<Result<Vec<_>, _>>()?
     };
     if !scenes.is_dir() {
-        return Err(format!(
-            "no scenes folder at {}: run from the repository's root or pass --scenes",
-            scenes.display()
-        ));
+        return Err(Failure::NoScenes(scenes.to_path_buf()));
     }
     let table = out.join("verify.csv");
     let progress = progress_bar(
@@ -620,11 +668,12 @@ fn verify(names: &[String], places: VerifyPlaces, quiet: bool) -> Result<(), Str
         progress.finish_and_clear();
         say(report.to_string().trim_end_matches('\n'))?;
         reports.push(report);
-        verify::write_table(&table, &reports)
-            .map_err(|e| format!("{}: cannot write the table: {e}", table.display()))?;
+        verify::write_table(&table, &reports).map_err(|source| Failure::VerifyTable {
+            path: table.clone(),
+            source,
+        })?;
         if let Some(dir) = report_dir {
-            verify::report::write_report(dir, &verify_command(names, scenes, dir), &reports)
-                .map_err(|e| format!("cannot write the report: {e}"))?;
+            verify::report::write_report(dir, &verify_command(names, scenes, dir), &reports)?;
         }
     }
     if let Some(dir) = report_dir {
@@ -654,19 +703,12 @@ fn verify(names: &[String], places: VerifyPlaces, quiet: bool) -> Result<(), Str
         failed.len(),
         table.display()
     ))?;
-    let mut problems = Vec::new();
-    if missed > 0 {
-        problems.push(format!("{missed} checks missed their target"));
-    }
-    if !failed.is_empty() {
-        problems.push(format!(
-            "these cases could not be run: {}",
-            failed.join(", ")
-        ));
-    }
-    if problems.is_empty() {
+    if missed == 0 && failed.is_empty() {
         Ok(())
     } else {
-        Err(problems.join("; "))
+        Err(Failure::Verify {
+            missed,
+            failed: failed.into_iter().map(String::from).collect(),
+        })
     }
 }
