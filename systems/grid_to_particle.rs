@@ -50,35 +50,22 @@ pub fn grid_to_particle(
     settings: Res<Settings>,
     clock: Res<Clock>,
     mut shared: ResMut<SharedLayers>,
-    mut bodies: Query<(
-        &mut MaterialPoints,
-        &mut StepTravel,
-        &mut DampedEnergy,
-        &GridLayer,
-        &mut TransferScratch,
-    )>,
+    mut bodies: Query<G2pData>,
 ) {
     let walls = grid.wall_bounds();
-    let (dt, beta, alpha) = (clock.dt, settings.pic_fraction, settings.particle_damping);
-    let position_update = settings.position_update();
-    let remapped = position_update == Some(PositionUpdate::RemappedVelocity);
-    let remaps = settings.remaps_velocity();
-    let affine = settings.affine_transfer;
-    let order = settings.xpic_order.unwrap_or(0);
-    // The nodal velocity that moves the points, as weights of v^n and
-    // v^{n+1} (none for the remapped one, taken below): its gradient is the
-    // material's motion about each point in contact, which its contacts'
-    // springs take next step and whose work the balance counts.
-    let (of_old, of_new) = match position_update {
-        // Eq. 12b moves by S v^n + ½ (V^{n+1} − V^n) ≈ ½ S (v^n + v^{n+1}).
-        None | Some(PositionUpdate::PaperEq11b) => (0.5, 0.5),
-        Some(PositionUpdate::NewGridVelocity) => (0.0, 1.0),
-        Some(PositionUpdate::RemappedVelocity) => (0.0, 0.0),
-    };
-    // Undamped pure FLIP gives the FLIP update itself, bit for bit: nothing
-    // is taken, and nothing needs counting.
-    let grid_damped = settings.grid_damping != 0.0;
-    let takes = beta != 0.0 || alpha != 0.0 || order >= 1 || grid_damped;
+    let TransferOptions {
+        dt,
+        beta,
+        alpha,
+        position_update,
+        remapped,
+        remaps,
+        affine,
+        order,
+        moved_by: (of_old, of_new),
+        grid_damped,
+        takes,
+    } = TransferOptions::new(&settings, clock.dt);
     for (mut points, mut travel, mut damped, layer, mut scratch) in &mut bodies {
         let TransferScratch {
             stencils,
@@ -186,23 +173,94 @@ pub fn grid_to_particle(
             damped.0 += taken.iter().sum::<Real>();
         }
     }
-    if !remaps {
-        return;
+    if remaps {
+        finish_the_remap(&mut shared, &mut bodies, remapped.then_some((dt, walls)));
     }
-    // A contact group's members move with the group's remapped field.
+}
+
+/// What the settings ask of the transfer, read once a step.
+struct TransferOptions {
+    dt: Real,
+    /// The PIC fraction β.
+    beta: Real,
+    /// The particle damping α.
+    alpha: Real,
+    position_update: Option<PositionUpdate>,
+    /// Whether the points move by the remapped velocity.
+    remapped: bool,
+    /// Whether the points' new velocities are mapped back to the nodes.
+    remaps: bool,
+    affine: bool,
+    /// The XPIC order, 0 for FLIP/PIC.
+    order: u32,
+    /// The nodal velocity that moves the points, as weights of v^n and
+    /// v^{n+1} (none for the remapped one, taken apart): its gradient is
+    /// the material's motion about each point in contact, which its
+    /// contacts' springs take next step and whose work the balance counts.
+    moved_by: (Real, Real),
+    grid_damped: bool,
+    /// Whether the update takes energy that the balance must count
+    /// (undamped pure FLIP gives the FLIP update itself, bit for bit).
+    takes: bool,
+}
+
+impl TransferOptions {
+    fn new(settings: &Settings, dt: Real) -> Self {
+        let (beta, alpha) = (settings.pic_fraction, settings.particle_damping);
+        let position_update = settings.position_update();
+        let order = settings.xpic_order.unwrap_or(0);
+        let grid_damped = settings.grid_damping != 0.0;
+        Self {
+            dt,
+            beta,
+            alpha,
+            position_update,
+            remapped: position_update == Some(PositionUpdate::RemappedVelocity),
+            remaps: settings.remaps_velocity(),
+            affine: settings.affine_transfer,
+            order,
+            moved_by: match position_update {
+                // Eq. 12b moves by S v^n + ½ (V^{n+1} − V^n) ≈ ½ S (v^n + v^{n+1}).
+                None | Some(PositionUpdate::PaperEq11b) => (0.5, 0.5),
+                Some(PositionUpdate::NewGridVelocity) => (0.0, 1.0),
+                Some(PositionUpdate::RemappedVelocity) => (0.0, 0.0),
+            },
+            grid_damped,
+            takes: beta != 0.0 || alpha != 0.0 || order >= 1 || grid_damped,
+        }
+    }
+}
+
+/// The bodies' components that the grid-to-particle transfer reads and
+/// writes.
+type G2pData = (
+    &'static mut MaterialPoints,
+    &'static mut StepTravel,
+    &'static mut DampedEnergy,
+    &'static GridLayer,
+    &'static mut TransferScratch,
+);
+
+/// Turns each body's remapped momentum into the remapped velocity field,
+/// summed first over each contact group's members, which move with the
+/// group's field; with `moving` (Δt and the walls) the points then move
+/// by that field (the `RemappedVelocity` position update).
+fn finish_the_remap(
+    shared: &mut SharedLayers,
+    bodies: &mut Query<G2pData>,
+    moving: Option<(Real, (DVec2, DVec2))>,
+) {
     shared.share_field(|entity, f| {
         if let Ok((.., layer, mut scratch)) = bodies.get_mut(entity) {
             f(layer, &mut scratch.remap.current);
         }
     });
-    for (mut points, mut travel, _, layer, mut scratch) in &mut bodies {
-        let remapped_velocity = &mut scratch.remap.current;
-        momentum_to_velocity(layer, remapped_velocity);
-        if remapped {
-            let stencils = &scratch.stencils;
+    for (mut points, mut travel, _, layer, mut scratch) in bodies {
+        momentum_to_velocity(layer, &mut scratch.remap.current);
+        if let Some((dt, walls)) = moving {
             travel.0 = move_remapped(
                 &mut points,
-                stencils,
+                &scratch.stencils,
                 layer,
                 &scratch.remap.current,
                 dt,
