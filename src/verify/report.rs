@@ -25,10 +25,10 @@ const REFERENCES: &str = "\
 Comput. Methods Appl. Mech. Engrg. 404 (2023) 115814, doi:10.1016/j.cma.2022.115814.
 2. G. Lube, H. E. Huppert, R. S. J. Sparks, A. Freundt, Collapses of two-dimensional granular \
 columns, Phys. Rev. E 72 (2005) 041301.
-3. E. Susila, R. D. Hryciw, large displacement finite element modelling of the cone penetration \
-test in normally consolidated sand, Int. J. Numer. Anal. Methods Geomech. 27 (2003), as cited in [1].
-4. K. Liao, C. Hu, M. Sueyoshi, free surface flow impacting on an elastic structure, experiment \
-against numerical simulation, Appl. Ocean Res. 50 (2015), as cited in [1].
+3. E. Susila, R. D. Hryciw, Large displacement FEM modelling of the cone penetration test (CPT) \
+in normally consolidated sand, Int. J. Numer. Anal. Methods Geomech. 27 (7) (2003) 585–602.
+4. K. Liao, C. Hu, M. Sueyoshi, Free surface flow impacting on an elastic structure: Experiment \
+versus numerical simulation, Appl. Ocean Res. 50 (2015) 192–208.
 ";
 
 /// Why the report could not be written.
