@@ -538,10 +538,10 @@ fn a_left_traction_on_the_axis_is_warned_of_and_one_off_it_loads() {
         "{sideways} against {ring}"
     );
     // Starting 0.01 m off the axis its points still fill the cells from
-    // the axis (a tester's case): warned too.
+    // the axis: warned too.
     assert!(with_left("Rectangle(min: (0.01, 0.15), max: (0.5, 0.65))").0);
-    // A triangle with one corner on it is loaded (a tester's case, which a
-    // rule on the outline refused).
+    // A triangle with one corner on it is loaded (a rule on the outline
+    // would refuse it).
     let (warned, triangle) = with_left("Polygon(vertices: [(0.0, 0.4), (0.5, 0.15), (0.5, 0.65)])");
     assert!(
         !warned && triangle > 1e-3 * ring,

@@ -440,14 +440,11 @@ fn held_punch(friction: f64) -> (f64, f64) {
 fn a_frictional_punch_held_still_feeds_no_energy_through_tractions() {
     // Nothing moves the punch while it is held, so friction may not make
     // the balance grow then. `Traction` itself makes it grow a little,
-    // friction or not: its edge points are not the contact point (README;
-    // measured 1.2% of the work without friction, the same at half the
-    // step; 0.04% with `BodyForce`). With the edge turned to the force, as
-    // the paper turns it, rather than to the contact's normal, the edge
-    // swung with the friction force: by the end of the push the balance
-    // had gained 34 J/m (18% of the work; 8.3 J/m, 4.3%, now) and it grew
-    // by 1.1 times the work while held (a tester's case; measured 0.9%
-    // now).
+    // friction or not: its edge points are not the contact point (about
+    // 1% of the work without friction, the same at half the step; 0.04%
+    // with `BodyForce`). The edge faces the contact's normal: turned to
+    // the force, as the paper turns it, it would swing with the friction
+    // force and feed energy while the punch is held.
     let (work, frictional) = held_punch(0.3);
     let (_, frictionless) = held_punch(0.0);
     // The push went in: about 190 J/m of work.

@@ -1,4 +1,4 @@
-//! Rigid–nonrigid DEM contact (paper section 3.2), issue 3.
+//! Rigid–nonrigid DEM contact (paper section 3.2).
 
 mod common;
 

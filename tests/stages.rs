@@ -1,4 +1,4 @@
-//! Stages: geostatic settling and a surcharge (issue 4), transitions and
+//! Stages: geostatic settling and a surcharge, transitions and
 //! their record.
 
 mod common;
