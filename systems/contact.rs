@@ -117,9 +117,10 @@ pub fn compute_rigid_contacts(
                     None => points.velocity[i] - velocity_at(pose, velocity, mass, geometry.point),
                 };
                 let carried = before.map_or(DVec2::ZERO, |c| c.tangential);
+                let law = law.with_body(body);
                 let law = &match numerics.geometry {
-                    Geometry::PlaneStrain => law.0,
-                    Geometry::Axisymmetric => law.0.over_thickness(points.hoop_radius(i)),
+                    Geometry::PlaneStrain => *law,
+                    Geometry::Axisymmetric => law.over_thickness(points.hoop_radius(i)),
                 };
                 let (delta, normal_potential) = match settings.penetration {
                     Penetration::Depth => (geometry.depth, 0.5 * geometry.depth.powi(2)),

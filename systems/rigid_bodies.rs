@@ -5,7 +5,7 @@ use crate::components::{
 };
 use crate::contact::{ContactLaw, ShapeContact, pair_force, shape_shape_contacts};
 use crate::math::{DVec2, Real};
-use crate::resources::{BlockContactHistory, BlockContactKey, Clock, Gravity};
+use crate::resources::{BlockContactHistory, BlockContactKey, BlockPairLaws, Clock, Gravity};
 use crate::rigid::{MAX_SUBSTEPS, advance, integrate_dynamic, substeps_needed, velocity_at};
 use bevy_ecs::prelude::*;
 
@@ -40,7 +40,7 @@ pub struct RigidScratch {
     contacts: Vec<ShapeContact>,
     forces: Vec<(DVec2, Real)>,
     history: Vec<(BlockContactKey, DVec2)>,
-    substep_input: Vec<(RigidMotion, Real, ContactLaw)>,
+    substep_input: Vec<(u32, RigidMotion, Real, ContactLaw)>,
 }
 
 /// Dynamic blocks: symplectic Euler from this step's reaction of the points,
@@ -59,6 +59,7 @@ pub fn move_rigid_blocks(
     clock: Res<Clock>,
     gravity: Res<Gravity>,
     mut history: ResMut<BlockContactHistory>,
+    pair_laws: Res<BlockPairLaws>,
     mut scratch: Local<RigidScratch>,
     mut blocks: Query<BlockData>,
 ) {
@@ -70,7 +71,7 @@ pub fn move_rigid_blocks(
             motion: *motion,
             mass: *mass,
             shape: shape.clone(),
-            law: law.0,
+            law: law.own,
             reaction: *reaction,
             pose: *pose,
             velocity: *velocity,
@@ -82,12 +83,12 @@ pub fn move_rigid_blocks(
         scratch
             .blocks
             .iter()
-            .map(|b| (b.motion, b.mass.mass, b.law)),
+            .map(|b| (b.index, b.motion, b.mass.mass, b.law)),
     );
-    let substeps = substeps_needed(&scratch.substep_input, clock.dt).min(MAX_SUBSTEPS);
+    let substeps = substeps_needed(&scratch.substep_input, &pair_laws, clock.dt).min(MAX_SUBSTEPS);
     let dt = clock.dt / substeps as Real;
     for _ in 0..substeps {
-        block_forces(scratch, gravity.0, dt, &mut history.0);
+        block_forces(scratch, &pair_laws, gravity.0, dt, &mut history.0);
         for (block, (force, torque)) in scratch.blocks.iter_mut().zip(&scratch.forces) {
             match block.motion {
                 RigidMotion::Fixed => {}
@@ -118,6 +119,7 @@ pub fn move_rigid_blocks(
 /// tangential springs are read from and written back to `history`.
 fn block_forces(
     scratch: &mut RigidScratch,
+    pair_laws: &BlockPairLaws,
     gravity: DVec2,
     dt: Real,
     history: &mut Vec<(BlockContactKey, DVec2)>,
@@ -153,7 +155,7 @@ fn block_forces(
                 &b.pose.to_parry(),
                 contacts,
             );
-            let law = a.law.pair(&b.law);
+            let law = pair_laws.between(a.index, b.index, &a.law, &b.law);
             let (center_a, center_b) = (a.mass.center(&a.pose), b.mass.center(&b.pose));
             for c in contacts.iter() {
                 let key = (a.index, b.index, c.features);

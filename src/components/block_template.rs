@@ -42,7 +42,7 @@ impl BlockTemplate {
                 self.velocity,
                 self.motion,
                 self.mass,
-                self.law,
+                self.law.clone(),
                 NeighbourList::default(),
                 BlockContacts::default(),
                 Reaction::default(),

@@ -105,9 +105,25 @@ impl RigidMass {
     }
 }
 
-/// The DEM law of the block's contacts with material points.
-#[derive(Component, Clone, Copy, Debug, PartialEq)]
-pub struct BlockContactLaw(pub ContactLaw);
+/// The DEM laws of the block's contacts with material points: its own,
+/// and those the scene gives for its contacts with particular bodies.
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct BlockContactLaw {
+    /// The block's own law (its `contact`).
+    pub own: ContactLaw,
+    /// The laws with particular bodies (`block_contacts`).
+    pub bodies: Vec<(Entity, ContactLaw)>,
+}
+
+impl BlockContactLaw {
+    /// The law of the block's contacts with the points of `body`.
+    pub fn with_body(&self, body: Entity) -> &ContactLaw {
+        self.bodies
+            .iter()
+            .find(|(b, _)| *b == body)
+            .map_or(&self.own, |(_, law)| law)
+    }
+}
 
 /// The points near the block: candidate contacts, rebuilt every
 /// `iter_period` steps (Algorithm 1, l. 5–8) or earlier when a point could

@@ -12,7 +12,7 @@ use crate::resources::{
     UpdateScheme,
 };
 use crate::rigid::BlockShape;
-use crate::scene::SceneError;
+use crate::scene::{SceneError, block_pair_laws};
 use crate::systems::{
     ContactStep, ContactTransferStep, DiagnosticsStep, MpmSystems, account_contact_work,
     compute_rigid_contacts, move_rigid_blocks, rebuild_neighbour_lists, record_blocks,
@@ -45,6 +45,7 @@ impl MpmPlugin for RigidBlocksPlugin {
         world.insert_resource(log);
         world.insert_resource(scene.contact);
         world.insert_resource(BlockContactHistory::default());
+        world.insert_resource(block_pair_laws(scene));
         world.insert_resource(ContactWork::default());
         setup.keep_resource::<BlockContactHistory>("block springs");
         setup.keep_resource::<ContactWork>("contact work");

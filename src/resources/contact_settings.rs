@@ -1,6 +1,6 @@
 //! Settings of the DEM contacts.
 
-use crate::contact::ForceApplication;
+use crate::contact::{ContactLaw, ForceApplication};
 use crate::math::{DVec2, Real};
 use bevy_ecs::prelude::Resource;
 use serde::{Deserialize, Serialize};
@@ -56,3 +56,19 @@ pub type BlockContactKey = (u32, u32, (u32, u32, u32));
 /// step: (key, force on a), sorted by key. A point that separates is dropped.
 #[derive(Resource, Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct BlockContactHistory(pub Vec<(BlockContactKey, DVec2)>);
+
+/// The laws the scene gives for particular pairs of blocks
+/// (`block_contacts`), by scene indices (a < b), sorted; other pairs take
+/// [`ContactLaw::pair`] of the blocks' own laws.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct BlockPairLaws(pub Vec<((u32, u32), ContactLaw)>);
+
+impl BlockPairLaws {
+    /// The law between blocks `a` and `b` (scene indices), whose own laws
+    /// are `own_a` and `own_b`.
+    pub fn between(&self, a: u32, b: u32, own_a: &ContactLaw, own_b: &ContactLaw) -> ContactLaw {
+        self.0
+            .binary_search_by_key(&(a.min(b), a.max(b)), |(pair, _)| *pair)
+            .map_or_else(|_| own_a.pair(own_b), |k| self.0[k].1)
+    }
+}

@@ -18,7 +18,7 @@ pub use crate::geometry::Geometry;
 pub use body_contacts::{BodyContacts, BodyPairLaw, PairSummary};
 pub(crate) use body_contacts::{BodyPairContact, MAX_CONTACT_BODIES, PairTally, law_between};
 pub use clock::Clock;
-pub(crate) use contact_settings::{BlockContactHistory, BlockContactKey};
+pub(crate) use contact_settings::{BlockContactHistory, BlockContactKey, BlockPairLaws};
 pub use contact_settings::{ContactSettings, Penetration};
 pub use contact_work::ContactWork;
 pub use diagnostics::{Diagnostics, NumericalFailure};

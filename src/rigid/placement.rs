@@ -34,9 +34,9 @@ pub fn placement_warnings(
     checks: PlacementChecks,
 ) -> Vec<String> {
     let name = &template.id.name;
-    let law = template.law.0;
     let mut warnings = Vec::new();
     for &body in bodies {
+        let law = *template.law.with_body(body);
         let Some(points) = world.get::<MaterialPoints>(body) else {
             continue;
         };

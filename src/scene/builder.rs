@@ -59,6 +59,7 @@ impl Scene {
                 blocks: Vec::new(),
                 contact: ContactSettings::default(),
                 body_contacts: Vec::new(),
+                block_contacts: Vec::new(),
                 probes: Vec::new(),
                 output: OutputSpec::default(),
                 stages: Vec::new(),

@@ -32,6 +32,7 @@ pub use location::SourceLocation;
 pub use point_file::{ListedPoint, PointFileError, PointListProblem};
 pub use shapes::{Shape, ShapeError};
 pub(crate) use spawn::spawn_scene;
+pub(crate) use spawn_blocks::block_pair_laws;
 pub(crate) use step_warnings::off_step_warnings;
 pub use velocity_field::{VelocityField, VelocityFieldError};
 
@@ -79,6 +80,12 @@ pub struct Scene {
     /// each group (or body without one) has its own grid layer. Default: none.
     #[serde(default)]
     pub body_contacts: Vec<BodyContactSpec>,
+    /// DEM contact laws for particular pairs with a block: a block and a
+    /// body (the law of that body's points against the block, instead of
+    /// the block's `contact`), or two blocks (instead of the softer
+    /// stiffnesses and smaller friction of their two laws). Default: none.
+    #[serde(default)]
+    pub block_contacts: Vec<BlockContactSpec>,
     /// Watched points. Default: none.
     #[serde(default)]
     pub probes: Vec<ProbeSpec>,
@@ -379,6 +386,16 @@ pub enum InitialStress {
 #[serde(deny_unknown_fields)]
 pub struct BodyContactSpec {
     /// The two sides: each a body's name or a contact group's (all its bodies).
+    pub between: (String, String),
+    /// Stiffnesses (N/m per metre of thickness), friction and damping.
+    pub law: ContactLaw,
+}
+
+/// The DEM law of a pair with a block.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BlockContactSpec {
+    /// The two sides: a block's name and a body's, or two blocks' names.
     pub between: (String, String),
     /// Stiffnesses (N/m per metre of thickness), friction and damping.
     pub law: ContactLaw,

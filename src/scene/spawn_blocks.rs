@@ -8,7 +8,9 @@ use crate::components::{
     BlockContactLaw, BlockId, BlockOutline, BlockTemplate, Pose, RigidMass, RigidMotion,
     RigidShape, RigidVelocity,
 };
+use crate::contact::ContactLaw;
 use crate::math::Real;
+use crate::resources::BlockPairLaws;
 use crate::rigid::{MAX_SUBSTEPS, PlacementChecks, placement_warnings, substeps_needed};
 use bevy_ecs::prelude::*;
 
@@ -30,8 +32,14 @@ pub fn spawn_blocks(
         geometry: scene.settings.geometry,
     };
     for (index, spec) in scene.blocks.iter().enumerate() {
-        let template = block_template(spec, index)?;
-        substep_input.push((template.motion, template.mass.mass, spec.contact));
+        let mut template = block_template(spec, index)?;
+        template.law.bodies = body_laws(scene, &spec.name, bodies);
+        substep_input.push((
+            index as u32,
+            template.motion,
+            template.mass.mass,
+            spec.contact,
+        ));
         if spec.present {
             warnings.extend(placement_warnings(&template, world, bodies, checks));
             template.spawn(world);
@@ -39,13 +47,49 @@ pub fn spawn_blocks(
             absent.push(template);
         }
     }
-    let needed = substeps_needed(&substep_input, scene.time.dt);
+    let needed = substeps_needed(&substep_input, &block_pair_laws(scene), scene.time.dt);
     if needed > MAX_SUBSTEPS {
         warnings.push(format!(
             "the block-block contacts need {needed} sub-steps per step (ten per contact period 2π sqrt(m / k_n)); only {MAX_SUBSTEPS} are taken, so they will likely blow up: lower time.dt or the blocks' normal_stiffness"
         ));
     }
     Ok((warnings, absent))
+}
+
+/// The laws `block_contacts` gives the block named `block` with bodies,
+/// each with the body's entity (`bodies` in scene order).
+fn body_laws(scene: &Scene, block: &str, bodies: &[Entity]) -> Vec<(Entity, ContactLaw)> {
+    scene
+        .block_contacts
+        .iter()
+        .filter_map(|spec| {
+            let (a, b) = (&spec.between.0, &spec.between.1);
+            let other = if a == block {
+                b
+            } else if b == block {
+                a
+            } else {
+                return None;
+            };
+            let k = scene.bodies.iter().position(|body| &body.name == other)?;
+            Some((bodies[k], spec.law))
+        })
+        .collect()
+}
+
+/// The laws `block_contacts` gives pairs of blocks, by scene indices.
+pub(crate) fn block_pair_laws(scene: &Scene) -> BlockPairLaws {
+    let index = |name: &str| scene.blocks.iter().position(|b| b.name == name);
+    let mut laws: Vec<((u32, u32), ContactLaw)> = scene
+        .block_contacts
+        .iter()
+        .filter_map(|spec| {
+            let (a, b) = (index(&spec.between.0)?, index(&spec.between.1)?);
+            Some(((a.min(b) as u32, a.max(b) as u32), spec.law))
+        })
+        .collect();
+    laws.sort_unstable_by_key(|(pair, _)| *pair);
+    BlockPairLaws(laws)
 }
 
 /// The components of block `index` of the scene, `spec`.
@@ -69,7 +113,10 @@ fn block_template(spec: &BlockSpec, index: usize) -> Result<BlockTemplate, Scene
         velocity,
         motion,
         mass,
-        law: BlockContactLaw(spec.contact),
+        law: BlockContactLaw {
+            own: spec.contact,
+            bodies: Vec::new(),
+        },
     })
 }
 

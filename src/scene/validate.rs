@@ -77,6 +77,7 @@ impl Scene {
         self.check_contact(&v)?;
         self.check_probes_and_output(&v, &bodies, &blocks)?;
         self.check_body_contacts(&v, &bodies)?;
+        self.check_block_contacts(&v, &bodies, &blocks)?;
         self.check_stages(&v, &bodies, &blocks)?;
         Ok(())
     }
@@ -682,6 +683,59 @@ impl Scene {
     }
 
     /// The body contact laws and contact groups.
+    /// The laws of pairs with a block: each names a block and a body, or
+    /// two blocks; a pair once; valid laws.
+    fn check_block_contacts(
+        &self,
+        v: &Locator,
+        body_names: &BTreeSet<&str>,
+        block_names: &BTreeSet<&str>,
+    ) -> Result<(), SceneError> {
+        let mut pairs = BTreeSet::new();
+        for (k, spec) in self.block_contacts.iter().enumerate() {
+            let (a, b) = (spec.between.0.as_str(), spec.between.1.as_str());
+            let at = |field: &'static str| -> Vec<&str> {
+                std::iter::once("block_contacts")
+                    .chain(std::iter::repeat_n(field, k + 1))
+                    .collect()
+            };
+            for name in [a, b] {
+                if !block_names.contains(name) && !body_names.contains(name) {
+                    return Err(v.invalid(
+                        &at("between"),
+                        format!(
+                            "block_contacts: unknown block or body '{name}'; expected one of the blocks {block_names:?} or bodies {body_names:?}"
+                        ),
+                    ));
+                }
+            }
+            if !block_names.contains(a) && !block_names.contains(b) {
+                return Err(v.invalid(
+                    &at("between"),
+                    format!(
+                        "block_contacts ('{a}', '{b}'): neither is a block; the law between two bodies goes in body_contacts"
+                    ),
+                ));
+            }
+            if a == b {
+                return Err(v.invalid(
+                    &at("between"),
+                    format!("block_contacts ('{a}', '{b}'): a block does not contact itself"),
+                ));
+            }
+            if !pairs.insert((a.min(b), a.max(b))) {
+                return Err(v.invalid(
+                    &at("between"),
+                    format!("block_contacts ('{a}', '{b}'): the pair has two laws"),
+                ));
+            }
+            spec.law.check().map_err(|e| {
+                v.invalid(&at("law"), format!("block_contacts ('{a}', '{b}'): {e}"))
+            })?;
+        }
+        Ok(())
+    }
+
     fn check_body_contacts<'s>(
         &'s self,
         v: &Locator,
