@@ -67,7 +67,9 @@ pub fn update_stress(
                 MaterialModel::LinearElastic(m) => step.apply(m, &mut points, &scratch.stencils),
                 MaterialModel::NeoHookean(m) => step.apply(m, &mut points, &scratch.stencils),
                 MaterialModel::MohrCoulomb(m) => step.apply(m, &mut points, &scratch.stencils),
-                MaterialModel::DruckerPrager(m) => step.apply(m, &mut points, &scratch.stencils),
+                MaterialModel::DruckerPrager(m) => {
+                    step.apply(&m.prepared(), &mut points, &scratch.stencils)
+                }
                 MaterialModel::NewtonianFluid(m) => step.apply(m, &mut points, &scratch.stencils),
                 MaterialModel::User(m) => step.apply(m, &mut points, &scratch.stencils),
             }

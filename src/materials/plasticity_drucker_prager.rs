@@ -105,30 +105,73 @@ impl ElasticPlastic for DruckerPrager {
         }
     }
 
+    /// See [`PreparedDruckerPrager`]'s return.
+    fn return_map(&self, trial: SymTensor) -> SymTensor {
+        self.prepared().return_map(trial)
+    }
+}
+
+impl DruckerPrager {
+    /// The model with the constants of its cone worked out once, as the
+    /// stress update calls it for every point.
+    pub(crate) fn prepared(&self) -> PreparedDruckerPrager {
+        let elastic = self.elastic();
+        PreparedDruckerPrager {
+            elastic,
+            eta: eta(self.friction_angle),
+            xi: xi(self.friction_angle),
+            eta_bar: eta(self.dilation_angle),
+            cohesion: self.cohesion,
+            sigma_t: self.cutoff(),
+            shear: elastic.shear_modulus(),
+            bulk: elastic.lame_lambda() + 2.0 / 3.0 * elastic.shear_modulus(),
+        }
+    }
+}
+
+/// A [`DruckerPrager`] model with η, ξ and η̄ (eq. 16), the cut-off in
+/// force and the elastic moduli worked out: the same return, without five
+/// tangents per point and step.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PreparedDruckerPrager {
+    elastic: LinearElastic,
+    eta: Real,
+    xi: Real,
+    eta_bar: Real,
+    cohesion: Real,
+    sigma_t: Real,
+    shear: Real,
+    bulk: Real,
+}
+
+impl ElasticPlastic for PreparedDruckerPrager {
+    fn elastic(&self) -> LinearElastic {
+        self.elastic
+    }
+
     /// Returns a trial stress to the admissible region (Huang et al. 2015
     /// for the corner): shear return along G, tension return along G_t, and
     /// the corner where both surfaces meet.
     fn return_map(&self, trial: SymTensor) -> SymTensor {
-        let (eta, xi, eta_bar) = (
-            eta(self.friction_angle),
-            xi(self.friction_angle),
-            eta(self.dilation_angle),
-        );
-        let elastic = self.elastic();
-        let (shear, bulk) = (
-            elastic.shear_modulus(),
-            elastic.lame_lambda() + 2.0 / 3.0 * elastic.shear_modulus(),
-        );
-        let sigma_t = self.cutoff();
+        let Self {
+            eta,
+            xi,
+            eta_bar,
+            cohesion,
+            sigma_t,
+            shear,
+            bulk,
+            ..
+        } = *self;
         let (mean, deviator, tau) = invariants(&trial);
-        let f_shear = tau + eta * mean - xi * self.cohesion;
+        let f_shear = tau + eta * mean - xi * cohesion;
         let f_tension = mean - sigma_t;
         if f_shear <= 0.0 && f_tension <= 0.0 {
             return trial;
         }
         // τ at the corner of the two surfaces and the slope of the line
         // dividing the shear and tension return regions.
-        let tau_corner = xi * self.cohesion - eta * sigma_t;
+        let tau_corner = xi * cohesion - eta * sigma_t;
         let alpha = (1.0 + eta * eta).sqrt() - eta;
         let region = tau - tau_corner - alpha * (mean - sigma_t);
         let (new_mean, new_tau) = if f_shear > 0.0 && region > 0.0 {
