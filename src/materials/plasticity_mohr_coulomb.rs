@@ -229,6 +229,7 @@ fn descending(v: &[Real; 3]) -> [usize; 3] {
 
 /// The model's constants for one return: trigonometry of the angles and the
 /// elastic moduli.
+#[derive(Clone, Copy)]
 struct Surfaces {
     /// sin φ.
     sin_phi: Real,
@@ -528,6 +529,37 @@ impl ElasticPlastic for MohrCoulomb {
         }
     }
 
+    /// See [`PreparedMohrCoulomb`]'s return.
+    fn return_map(&self, trial: SymTensor) -> SymTensor {
+        self.prepared().return_map(trial)
+    }
+}
+
+impl MohrCoulomb {
+    /// The model with the constants of its surfaces worked out once, as
+    /// the stress update calls it for every point.
+    pub(crate) fn prepared(&self) -> PreparedMohrCoulomb {
+        PreparedMohrCoulomb {
+            elastic: self.elastic(),
+            surfaces: Surfaces::new(self),
+        }
+    }
+}
+
+/// A [`MohrCoulomb`] model with the trigonometry of its angles and its
+/// moduli worked out: the same return, without three trigonometric calls
+/// per point and step.
+#[derive(Clone, Copy)]
+pub(crate) struct PreparedMohrCoulomb {
+    elastic: LinearElastic,
+    surfaces: Surfaces,
+}
+
+impl ElasticPlastic for PreparedMohrCoulomb {
+    fn elastic(&self) -> LinearElastic {
+        self.elastic
+    }
+
     /// Returns a trial stress to the admissible set (see the module docs).
     fn return_map(&self, trial: SymTensor) -> SymTensor {
         let centre = 0.5 * (trial.xx + trial.yy);
@@ -542,7 +574,7 @@ impl ElasticPlastic for MohrCoulomb {
         let values = [centre + radius, centre - radius, trial.zz];
         let order = descending(&values);
         let sorted = [values[order[0]], values[order[1]], values[order[2]]];
-        let Some(returned) = Surfaces::new(self).return_principal(sorted) else {
+        let Some(returned) = self.surfaces.return_principal(sorted) else {
             return trial;
         };
         let mut out = [0.0; 3];
