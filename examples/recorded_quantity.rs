@@ -28,30 +28,37 @@ struct Heights {
     samples: Vec<Height>,
 }
 
-/// Samples every body's top when the probes are sampled.
-fn record_heights(
-    clock: Res<Clock>,
-    probes: Res<Probes>,
-    bodies: Query<(&BodyIndex, &MaterialPoints)>,
-    mut heights: ResMut<Heights>,
+/// Appends every body's top at `time`, bodies in scene order.
+fn sample<'a>(
+    heights: &mut Heights,
+    time: Real,
+    bodies: impl Iterator<Item = (&'a BodyIndex, &'a MaterialPoints)>,
 ) {
-    if !(clock.step.is_multiple_of(probes.every) || clock.finished()) {
-        return;
-    }
-    let mut tops: Vec<Height> = bodies
-        .iter()
-        .map(|(index, points)| Height {
-            time: clock.time,
+    let first = heights.samples.len();
+    heights.samples.extend(bodies.map(|(index, points)| {
+        Height {
+            time,
             body: index.0 as usize,
             top: points
                 .position
                 .iter()
                 .map(|x| x.y)
                 .fold(Real::MIN, Real::max),
-        })
-        .collect();
-    tops.sort_unstable_by_key(|h| h.body);
-    heights.samples.extend(tops);
+        }
+    }));
+    heights.samples[first..].sort_unstable_by_key(|h| h.body);
+}
+
+/// Samples every body's top on the steps the engine samples its records.
+fn record_heights(
+    clock: Res<Clock>,
+    probes: Res<Probes>,
+    bodies: Query<(&BodyIndex, &MaterialPoints)>,
+    mut heights: ResMut<Heights>,
+) {
+    if probes.due(&clock) {
+        sample(&mut heights, clock.time, bodies.iter());
+    }
 }
 
 /// Checkpoints carry the samples.
@@ -62,8 +69,10 @@ impl Checkpointed for Heights {
         self.samples.clone()
     }
 
+    /// In place: the room reserved for the run stays.
     fn restore(&mut self, samples: Vec<Height>) {
-        self.samples = samples;
+        self.samples.clear();
+        self.samples.extend(samples);
     }
 }
 
@@ -99,7 +108,14 @@ struct HeightsPlugin;
 
 impl MpmPlugin for HeightsPlugin {
     fn build(&self, setup: &mut PluginSetup) -> Result<(), mpdem::scene::SceneError> {
-        setup.world.insert_resource(Heights::default());
+        // Room for the whole run's samples, and the first one, at t = 0.
+        let bodies = setup.scene.bodies.len();
+        let mut heights = Heights {
+            samples: Vec::with_capacity(setup.samples_in_run() * bodies),
+        };
+        let mut query = setup.world.query::<(&BodyIndex, &MaterialPoints)>();
+        sample(&mut heights, 0.0, query.iter(setup.world));
+        setup.world.insert_resource(heights);
         setup.record::<Heights>("heights", "heights.csv");
         Ok(())
     }

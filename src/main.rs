@@ -90,9 +90,10 @@ enum Command {
         #[arg(long, default_value_t = 5)]
         warmup: u64,
         /// Timings of the standard blocks, taken in turn; the median and
-        /// the spread (slowest less fastest, over the median) are reported.
-        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..))]
-        repeats: u64,
+        /// the spread (slowest less fastest, over the median) are reported
+        /// [default: 5; not with --scene].
+        #[arg(long, conflicts_with = "scene", value_parser = clap::value_parser!(u64).range(1..))]
+        repeats: Option<u64>,
     },
     /// Run the paper's validation cases at full size and measure each
     /// against its target (the table is also written to OUT/verify.csv;
@@ -162,7 +163,12 @@ fn main() -> ExitCode {
             repeats,
         } => with_threads(threads, || match scene {
             Some(path) => bench_scene(&path, warmup, steps),
-            None => run_bench(points as usize, warmup, steps, repeats as usize),
+            None => run_bench(
+                points as usize,
+                warmup,
+                steps,
+                repeats.unwrap_or(5) as usize,
+            ),
         }),
         Command::Verify {
             cases,
@@ -318,8 +324,8 @@ fn with_threads(
 }
 
 /// Checks every scene, reporting each accepted one as it comes; an error
-/// if any is refused (the last refusal's message, the others printed
-/// before it).
+/// if any is refused: a single scene's refusal, or, of several, each
+/// refusal printed and their count.
 fn check_all(paths: &[PathBuf]) -> Result<(), Failure> {
     let mut refused = Vec::new();
     for path in paths {

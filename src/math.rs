@@ -149,9 +149,17 @@ pub(crate) fn outer(a: DVec2, b: DVec2) -> DMat2 {
 /// Why a polygon is not a convex one.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 pub enum PolygonError {
-    /// Fewer than three vertices, or one not finite.
-    #[error("polygon needs at least 3 finite vertices, got {0}")]
+    /// Fewer than three vertices.
+    #[error("polygon needs at least 3 vertices, got {0}")]
     TooFew(usize),
+    /// A vertex not finite.
+    #[error("polygon vertex {index} ({at}) is not finite")]
+    NotFinite {
+        /// The vertex's index.
+        index: usize,
+        /// Where it is.
+        at: DVec2,
+    },
     /// A turn goes the other way.
     #[error("polygon is not convex at vertex {index} ({at})")]
     NotConvex {
@@ -169,8 +177,14 @@ pub enum PolygonError {
 /// the same way (either winding; collinear vertices allowed); the error
 /// says what is wrong and where.
 pub(crate) fn check_convex_polygon(vertices: &[DVec2]) -> Result<(), PolygonError> {
-    if vertices.len() < 3 || vertices.iter().any(|v| !v.is_finite()) {
+    if vertices.len() < 3 {
         return Err(PolygonError::TooFew(vertices.len()));
+    }
+    if let Some(index) = vertices.iter().position(|v| !v.is_finite()) {
+        return Err(PolygonError::NotFinite {
+            index,
+            at: vertices[index],
+        });
     }
     let n = vertices.len();
     let mut sign = 0.0;

@@ -430,7 +430,7 @@ impl Runner {
                             format!("{}: cannot carry on the output: {e}", dir.display()),
                         ))
                     })?;
-                notices.extend(gaps.into_iter().map(|g| format!("warning: {g}")));
+                notices.extend(gaps);
                 Ok(output)
             }
             Start::Fresh | Start::Restart => {

@@ -89,6 +89,7 @@ impl Simulation {
             sim.build_plugin(plugin)?;
             plugin.add_systems(&mut sim.schedule, scene.settings.scheme);
         }
+        sim.registries.kept.seal();
         Ok(sim)
     }
 
@@ -110,8 +111,9 @@ impl Simulation {
     ///
     /// A run whose user systems keep state registered with
     /// [`Simulation::keep_in_checkpoints`] or
-    /// [`Simulation::keep_components_in_checkpoints`] is built with
-    /// [`Simulation::from_scene`], registers it, then calls
+    /// [`Simulation::keep_components_in_checkpoints`], or that has plugins
+    /// of its own, is built with [`Simulation::from_scene`], registers its
+    /// state and adds its plugins, then calls
     /// [`Simulation::restore_checkpoint`].
     pub fn resume(scene: &Scene, path: &Path) -> Result<Self, CheckpointError> {
         let mut sim = Self::from_scene(scene)?;
@@ -139,8 +141,10 @@ impl Simulation {
         if self.clock().step != 0 {
             return Err(refuse("the simulation has already stepped"));
         }
-        if scene_fingerprint(scene) != self.fingerprint {
-            return Err(refuse("the simulation was built from another scene"));
+        if scene != &self.scene {
+            return Err(refuse(
+                "the simulation was built from another scene (or another time.end)",
+            ));
         }
         restore_checkpoint(
             &mut self.world,
@@ -168,7 +172,11 @@ impl Simulation {
     /// (e.g. a controller's integral), under `name`: without it a resumed
     /// run would start that state afresh and differ from one that never
     /// stopped. Register it before writing and before restoring a
-    /// checkpoint; registering a name again replaces the type.
+    /// checkpoint; registering a name of the user's again replaces the
+    /// type.
+    ///
+    /// # Panics
+    /// If `name` is one the engine's own state is kept under.
     pub fn keep_in_checkpoints<R: Resource + Serialize + DeserializeOwned>(&mut self, name: &str) {
         self.registries.kept.keep_resource::<R>(name);
     }
@@ -178,8 +186,12 @@ impl Simulation {
     /// block's controller), under `name`, wherever it is at the
     /// checkpoint: restoring puts it on the same bodies and blocks and
     /// removes it from the others. Register it before writing and before
-    /// restoring a checkpoint; registering a name again replaces the type.
+    /// restoring a checkpoint; registering a name of the user's again
+    /// replaces the type.
     /// Components on entities the user spawned are not carried.
+    ///
+    /// # Panics
+    /// If `name` is one the engine's own state is kept under.
     pub fn keep_components_in_checkpoints<C: Component + Serialize + DeserializeOwned>(
         &mut self,
         name: &str,

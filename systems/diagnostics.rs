@@ -105,7 +105,7 @@ type EnergyScratch = (
 /// series end with the state the run ends in. Steps taken past the end
 /// (`Simulation::step` does not stop there) keep the interval.
 fn sample_due(clock: &Clock, probes: &Probes) -> bool {
-    clock.step.is_multiple_of(probes.every.max(1)) || clock.step == clock.total_steps()
+    probes.due(clock)
 }
 
 /// Records probes and energies at the steps `sample_due` picks, unless the step

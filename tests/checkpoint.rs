@@ -779,3 +779,15 @@ fn user_components_follow_the_bodies_and_the_blocks_a_stage_removes() {
     assert_eq!(unkept.clock().step, 0);
     assert_eq!(counts(&mut unkept), (Some(Count(0)), Some(Count(0))));
 }
+
+/// A user's state may not take a name the engine keeps its own under: the
+/// engine's energy record would drop out of checkpoints.
+#[test]
+#[should_panic(expected = "is the engine's")]
+fn user_state_cannot_take_an_engine_name() {
+    let scene = Scene::load(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/wave_1d.ron").as_ref())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut sim = build(&scene);
+    sim.world_mut().init_resource::<Controller>();
+    sim.keep_in_checkpoints::<Controller>("energy");
+}

@@ -159,3 +159,26 @@ fn bad_pair_laws_are_refused() {
         assert!(message.contains(expected), "{message}");
     }
 }
+
+#[test]
+fn a_name_both_a_block_and_a_body_is_refused_in_a_pair() {
+    let law = "law: (normal_stiffness: 1e7, tangential_stiffness: 1e7, friction: 0.6)";
+    let text = format!(
+        r#"Scene(
+    grid: (cell_size: 0.02, cells: (50, 10)),
+    time: (dt: 5e-5, end: 0.2),
+    materials: [(name: "pad", density: 2000.0, model: LinearElastic((youngs_modulus: 1e7, poisson_ratio: 0.3)))],
+    bodies: [(name: "pad", material: "pad", shape: Rectangle(min: (0.3, 0.1), max: (0.5, 0.16)), points_per_cell: 2)],
+    blocks: [
+        (name: "pad", shape: Cuboid(half_extents: (0.5, 0.05)), position: (0.5, 0.05), motion: Fixed,
+         contact: (normal_stiffness: 1e7, tangential_stiffness: 1e7, friction: 0.16)),
+    ],
+    block_contacts: [(between: ("pad", "pad"), {law})],
+)"#
+    );
+    let message = match Scene::parse(&text, "pair_laws.ron".as_ref()) {
+        Ok(_) => panic!("accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(message.contains("names a block and a body"), "{message}");
+}

@@ -36,6 +36,9 @@ type Encode = fn(&World, &Holders) -> Result<Stored, Problem>;
 /// Decodes one registered type.
 type Decode = fn(&Stored) -> Result<Insert, Problem>;
 
+/// Forgets a time record's samples from a time on.
+type Forget = fn(&mut World, Real);
+
 /// Why the state registered under a name could not be stored or put back.
 #[derive(Debug, thiserror::Error)]
 pub enum StateError {
@@ -108,7 +111,7 @@ struct Kept {
     decode: Decode,
 }
 
-/// A resource that the scene's spawn builds and whose changing part
+/// A resource that a plugin builds with the world and whose changing part
 /// checkpoints carry: restoring puts that part back into the resource the
 /// rebuilt world already holds (a record keeps the room reserved for the
 /// whole run, so recording never allocates inside a step).
@@ -123,9 +126,10 @@ pub trait Checkpointed: Resource + Component<Mutability = Mutable> {
     fn restore(&mut self, stored: Self::Stored);
 }
 
-/// A record of samples in time whose checkpoint may hold one sample too
-/// many: the one a run takes at its last step, off its sampling interval,
-/// which a run that goes on past that step does not take.
+/// A record of samples in time, taken on the steps the probes are
+/// (`Probes::due`), whose checkpoint may hold one sample too many: the one
+/// a run takes at its last step, off its sampling interval, which a run
+/// that goes on past that step does not take.
 pub trait TimeRecord: Checkpointed {
     /// Forgets the samples taken at `time` or later.
     fn forget_from(&mut self, time: Real);
@@ -138,7 +142,10 @@ pub struct KeptState {
     kept: Vec<Kept>,
     /// The time records, to forget a sample a run that never stopped
     /// would not have taken.
-    records: Vec<fn(&mut World, Real)>,
+    records: Vec<(String, Forget)>,
+    /// How many of the first entries are the engine's, whose names the
+    /// user's may not take.
+    sealed: usize,
     /// What features do once the whole state is back.
     after_restore: Vec<fn(&mut World)>,
 }
@@ -166,7 +173,8 @@ impl KeptState {
     /// resumed run that a run that never stopped would not have.
     pub fn keep_record<R: TimeRecord>(&mut self, name: &str) {
         self.keep_checkpointed::<R>(name);
-        self.records.push(forget_from::<R>);
+        self.records.retain(|(n, _)| n != name);
+        self.records.push((name.to_owned(), forget_from::<R>));
     }
 
     /// Adds `hook`, run once the whole state of a checkpoint is restored
@@ -184,7 +192,7 @@ impl KeptState {
 
     /// Forgets the samples of every time record taken at `time` or later.
     pub(crate) fn forget_from(&self, world: &mut World, time: Real) {
-        for forget in &self.records {
+        for (_, forget) in &self.records {
             forget(world, time);
         }
     }
@@ -196,16 +204,33 @@ impl KeptState {
         self.register(name, encode_component::<C>, decode_component::<C>);
     }
 
+    /// Registers `name`, replacing an earlier registration of it unless
+    /// that one is the engine's.
+    ///
+    /// # Panics
+    /// If `name` is one the engine keeps (see [`KeptState::seal`]): taking
+    /// it would drop the engine's state from checkpoints.
     fn register(&mut self, name: &str, encode: Encode, decode: Decode) {
         let kept = Kept {
             name: name.to_owned(),
             encode,
             decode,
         };
-        match self.kept.iter_mut().find(|k| k.name == name) {
-            Some(existing) => *existing = kept,
+        match self.kept.iter().position(|k| k.name == name) {
+            Some(k) if k < self.sealed => panic!(
+                "the checkpointed state '{name}' is the engine's: keep yours under another name"
+            ),
+            Some(k) => {
+                self.records.retain(|(n, _)| n != name);
+                self.kept[k] = kept;
+            }
             None => self.kept.push(kept),
         }
+    }
+
+    /// Marks every name registered so far as the engine's.
+    pub(crate) fn seal(&mut self) {
+        self.sealed = self.kept.len();
     }
 
     /// Encodes every registered type from `world`, whose bodies and blocks

@@ -143,12 +143,7 @@ pub enum FormatProblem {
 }
 
 /// The layout of the stored state; a checkpoint of another layout is
-/// refused rather than misread. (9: surface tractions no longer held in
-/// the points' external forces; 10: the sampling interval kept; 11: the
-/// settings' geometry and the contacts' tangential spring energy; 12: the
-/// surface loads' and the blocks' work; 13: the points' inelastic work;
-/// 14: the named schemes, the position update optional; 15: the state's
-/// length and checksum; 16: the features' state kept by name.)
+/// refused rather than misread (CHANGELOG.md names what each changed).
 const FORMAT: u32 = 16;
 
 /// Why a checkpoint could not be written or resumed.

@@ -92,7 +92,7 @@ impl Animation {
             AnimatedField::Body => Real::from(columns.body[p]),
         };
         self.frames.push(AnimationFrame {
-            title: format!("{} at t = {:.4} s", columns.name, columns.time),
+            title: format!("{} at t = {:.4e} s", columns.name, columns.time),
             positions: kept.clone().map(|p| columns.positions[p]).collect(),
             values: kept.map(value).collect(),
             outlines: columns.outlines.to_vec(),

@@ -225,7 +225,7 @@ impl RunOutput {
             .is_some_and(|(frame, written)| frame > written);
         let gaps = replaced.then(|| {
             format!(
-                "{}: the frames were written after the checkpoint, by another run into this folder: the frames before t = {:.6e} s are that run's, not this one's (the CSV series, kept in the checkpoint, are whole)",
+                "warning: {}: the frames were written after the checkpoint, by another run into this folder: the frames before t = {:.6e} s are that run's, not this one's (the CSV series, kept in the checkpoint, are whole)",
                 dir.join("points.pvd").display(),
                 clock.time
             )
@@ -257,7 +257,7 @@ impl RunOutput {
         let mut notes: Vec<String> = gaps.into_iter().collect();
         if output.animation.is_some() {
             notes.push(format!(
-                "animation.gif shows the run from t = {:.6e} s, where it resumed; the frames before are in {}",
+                "note: animation.gif shows the run from t = {:.6e} s, where it resumed; the frames before are in {}",
                 clock.time,
                 dir.join("vtk").display()
             ));
@@ -529,8 +529,6 @@ fn animation(scene: &Scene, sim: &Simulation, frame_every: u64) -> Option<Animat
     ))
 }
 
-/// Steps between frames: the scene's frame interval (its default follows
-/// the run's `time.end`) in whole steps, at least one.
 /// A line series for each of `names` over the curve of the same rank.
 fn lines<'a>(
     names: impl Iterator<Item = &'a str>,
@@ -542,6 +540,8 @@ fn lines<'a>(
         .collect()
 }
 
+/// Steps between frames: the scene's frame interval (its default follows
+/// the run's `time.end`) in whole steps, at least one.
 fn frame_every(scene: &Scene, sim: &Simulation) -> u64 {
     let clock = sim.clock();
     scene.output.frame_every(clock.end, clock.dt)

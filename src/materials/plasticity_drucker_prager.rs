@@ -105,7 +105,8 @@ impl ElasticPlastic for DruckerPrager {
         }
     }
 
-    /// See [`PreparedDruckerPrager`]'s return.
+    /// Returns a trial stress to the admissible region: shear return along
+    /// G, tension return along G_t, and the corner where both meet.
     fn return_map(&self, trial: SymTensor) -> SymTensor {
         self.prepared().return_map(trial)
     }
@@ -130,8 +131,7 @@ impl DruckerPrager {
 }
 
 /// A [`DruckerPrager`] model with η, ξ and η̄ (eq. 16), the cut-off in
-/// force and the elastic moduli worked out: the same return, without five
-/// tangents per point and step.
+/// force and the elastic moduli worked out once, for the per-point return.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PreparedDruckerPrager {
     elastic: LinearElastic,

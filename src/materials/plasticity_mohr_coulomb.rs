@@ -529,7 +529,7 @@ impl ElasticPlastic for MohrCoulomb {
         }
     }
 
-    /// See [`PreparedMohrCoulomb`]'s return.
+    /// Returns a trial stress to the admissible set (see the module docs).
     fn return_map(&self, trial: SymTensor) -> SymTensor {
         self.prepared().return_map(trial)
     }
@@ -547,8 +547,7 @@ impl MohrCoulomb {
 }
 
 /// A [`MohrCoulomb`] model with the trigonometry of its angles and its
-/// moduli worked out: the same return, without three trigonometric calls
-/// per point and step.
+/// moduli worked out once, for the per-point return.
 #[derive(Clone, Copy)]
 pub(crate) struct PreparedMohrCoulomb {
     elastic: LinearElastic,

@@ -30,9 +30,11 @@ use serde::de::DeserializeOwned;
 /// [`crate::systems::MpmSchedule`].
 pub trait MpmPlugin: Sync {
     /// Sets the feature up in a world spawned from a scene (its bodies and
-    /// blocks are there, and the resources of the plugins built before):
-    /// inserts its resources, registers the state checkpoints carry and
-    /// the records the outputs write. The default does nothing.
+    /// blocks are there, and the resources of the plugins built before; a
+    /// user's plugin comes after the engine's, so after the first stage
+    /// was entered): inserts its resources, registers the state
+    /// checkpoints carry and the records the outputs write. The default
+    /// does nothing.
     fn build(&self, _setup: &mut PluginSetup) -> Result<(), SceneError> {
         Ok(())
     }
@@ -106,14 +108,27 @@ impl<'a> PluginSetup<'a> {
 
     /// Makes checkpoints carry the part of the resource `R` that it stores
     /// (see [`Checkpointed`]), under `name`.
+    ///
+    /// # Panics
+    /// If `R` is not in the world yet (restoring puts the part back into
+    /// it), or `name` is one the engine's state is kept under.
     pub fn keep_checkpointed<R: Checkpointed>(&mut self, name: &str) {
+        assert!(
+            self.world.contains_resource::<R>(),
+            "{}: insert the resource before keeping it in checkpoints",
+            std::any::type_name::<R>()
+        );
         self.kept.keep_checkpointed::<R>(name);
     }
 
     /// Makes the time record `R` a series of the run: checkpoints carry
     /// it under `name`, and the outputs write it as the CSV file `file`,
     /// appended to as the run records it (see [`CsvSeries`]).
+    ///
+    /// # Panics
+    /// As [`PluginSetup::keep_checkpointed`].
     pub fn record<R: TimeRecord + CsvSeries>(&mut self, name: &str, file: &'static str) {
+        self.keep_checkpointed::<R>(name);
         self.kept.keep_record::<R>(name);
         self.write_csv::<R>(file);
     }
@@ -123,6 +138,17 @@ impl<'a> PluginSetup<'a> {
     /// carry it only if it is also kept.
     pub fn write_csv<R: Resource + CsvSeries>(&mut self, file: &'static str) {
         self.records.push(CsvRecord::of::<R>(file));
+    }
+
+    /// How many samples a record may take in the run (the first, one per
+    /// sampling interval, one at the end): reserve this room when building
+    /// a record, so that recording never allocates inside the step.
+    pub fn samples_in_run(&self) -> usize {
+        let every = self
+            .world
+            .get_resource::<crate::resources::Probes>()
+            .map_or(1, |p| p.every);
+        records::samples_in_run(self.world.resource::<crate::resources::Clock>(), every)
     }
 
     /// Adds `hook`, run once a checkpoint's whole state is restored, to

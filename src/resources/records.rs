@@ -50,6 +50,14 @@ pub struct Probes {
 }
 
 impl Probes {
+    /// Whether the step the clock has just taken is sampled: every
+    /// `every` steps, and the run's last step (its end, or where its last
+    /// stage ended it). Every record is sampled on these steps, so that a
+    /// checkpoint's records agree (see `checkpoint::TimeRecord`).
+    pub fn due(&self, clock: &crate::resources::Clock) -> bool {
+        clock.step.is_multiple_of(self.every.max(1)) || clock.step == clock.total_steps()
+    }
+
     /// Appends one sample per probe at `time`; `points_of` gives a body's points.
     pub fn record<'a>(
         &mut self,

@@ -28,6 +28,10 @@ pub fn undamped_contact_warning(scene: &Scene) -> Option<String> {
         && scene
             .body_contacts
             .iter()
+            .all(|c| c.law.normal_damping > 0.0)
+        && scene
+            .block_contacts
+            .iter()
             .all(|c| c.law.normal_damping > 0.0);
     let contacts = !scene.bodies.is_empty()
         && (!scene.blocks.is_empty() || !scene.body_contacts.is_empty())

@@ -262,46 +262,6 @@ impl Shape {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn rectangle_fill_is_exact() {
-        let s = Shape::Rectangle {
-            min: DVec2::ZERO,
-            max: DVec2::new(1.0, 0.5),
-        };
-        let pts = s.fill(DVec2::ZERO, 0.1, 2);
-        assert_eq!(pts.len(), 10 * 5 * 4);
-        assert!((pts[0] - DVec2::splat(0.025)).length() < 1e-15);
-    }
-
-    #[test]
-    fn ring_and_polygon_membership() {
-        let ring = Shape::Ring {
-            center: DVec2::ZERO,
-            inner_radius: 1.0,
-            outer_radius: 2.0,
-        };
-        assert!(ring.contains(DVec2::new(1.5, 0.0)) && !ring.contains(DVec2::new(0.5, 0.0)));
-        let tri = Shape::Polygon {
-            vertices: vec![DVec2::ZERO, DVec2::X, DVec2::Y],
-        };
-        assert!(tri.check().is_ok());
-        assert!(tri.contains(DVec2::splat(0.2)) && !tri.contains(DVec2::splat(0.8)));
-        let dart = Shape::Polygon {
-            vertices: vec![
-                DVec2::ZERO,
-                DVec2::new(2.0, 0.0),
-                DVec2::new(1.0, 0.3),
-                DVec2::new(1.0, 2.0),
-            ],
-        };
-        assert!(dart.check().unwrap_err().to_string().contains("not convex"));
-    }
-}
-
 /// What is wrong with a body's shape.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ShapeError {
@@ -350,4 +310,44 @@ pub enum ShapeError {
         /// Its volume.
         volume: Option<Real>,
     },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rectangle_fill_is_exact() {
+        let s = Shape::Rectangle {
+            min: DVec2::ZERO,
+            max: DVec2::new(1.0, 0.5),
+        };
+        let pts = s.fill(DVec2::ZERO, 0.1, 2);
+        assert_eq!(pts.len(), 10 * 5 * 4);
+        assert!((pts[0] - DVec2::splat(0.025)).length() < 1e-15);
+    }
+
+    #[test]
+    fn ring_and_polygon_membership() {
+        let ring = Shape::Ring {
+            center: DVec2::ZERO,
+            inner_radius: 1.0,
+            outer_radius: 2.0,
+        };
+        assert!(ring.contains(DVec2::new(1.5, 0.0)) && !ring.contains(DVec2::new(0.5, 0.0)));
+        let tri = Shape::Polygon {
+            vertices: vec![DVec2::ZERO, DVec2::X, DVec2::Y],
+        };
+        assert!(tri.check().is_ok());
+        assert!(tri.contains(DVec2::splat(0.2)) && !tri.contains(DVec2::splat(0.8)));
+        let dart = Shape::Polygon {
+            vertices: vec![
+                DVec2::ZERO,
+                DVec2::new(2.0, 0.0),
+                DVec2::new(1.0, 0.3),
+                DVec2::new(1.0, 2.0),
+            ],
+        };
+        assert!(dart.check().unwrap_err().to_string().contains("not convex"));
+    }
 }

@@ -50,7 +50,7 @@ pub fn spawn_blocks(
     let needed = substeps_needed(&substep_input, &block_pair_laws(scene), scene.time.dt);
     if needed > MAX_SUBSTEPS {
         warnings.push(format!(
-            "the block-block contacts need {needed} sub-steps per step (ten per contact period 2π sqrt(m / k_n)); only {MAX_SUBSTEPS} are taken, so they will likely blow up: lower time.dt or the blocks' normal_stiffness"
+            "the block-block contacts need {needed} sub-steps per step (ten per contact period 2π sqrt(m / k_n)); only {MAX_SUBSTEPS} are taken, so they will likely blow up: lower time.dt or the normal_stiffness of the stiffest pair's law (a block's contact, or its block_contacts entry)"
         ));
     }
     Ok((warnings, absent))

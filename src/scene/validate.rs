@@ -682,7 +682,6 @@ impl Scene {
         Ok(())
     }
 
-    /// The body contact laws and contact groups.
     /// The laws of pairs with a block: each names a block and a body, or
     /// two blocks; a pair once; valid laws.
     fn check_block_contacts(
@@ -700,6 +699,14 @@ impl Scene {
                     .collect()
             };
             for name in [a, b] {
+                if block_names.contains(name) && body_names.contains(name) {
+                    return Err(v.invalid(
+                        &at("between"),
+                        format!(
+                            "block_contacts: '{name}' names a block and a body; rename one so that the law's pair is clear"
+                        ),
+                    ));
+                }
                 if !block_names.contains(name) && !body_names.contains(name) {
                     return Err(v.invalid(
                         &at("between"),
@@ -736,6 +743,7 @@ impl Scene {
         Ok(())
     }
 
+    /// The body contact laws and contact groups.
     fn check_body_contacts<'s>(
         &'s self,
         v: &Locator,
