@@ -146,6 +146,18 @@ pub enum FormatProblem {
 /// refused rather than misread (CHANGELOG.md names what each changed).
 const FORMAT: u32 = 16;
 
+impl CheckpointError {
+    /// The error, naming the checkpoint file `path` where it names a file.
+    fn at(self, path: &Path) -> Self {
+        let path = path.to_path_buf();
+        match self {
+            Self::Encode { source, .. } => Self::Encode { path, source },
+            Self::EncodeWhole { source, .. } => Self::EncodeWhole { path, source },
+            other => other,
+        }
+    }
+}
+
 /// Why a checkpoint could not be written or resumed.
 #[derive(Debug, thiserror::Error)]
 pub enum CheckpointError {
@@ -295,17 +307,7 @@ pub(crate) fn write_checkpoint(
     kept: &KeptState,
     path: &Path,
 ) -> Result<(), CheckpointError> {
-    let payload = encoded_state(world, fingerprint, kept).map_err(|e| match e {
-        CheckpointError::Encode { source, .. } => CheckpointError::Encode {
-            path: path.to_path_buf(),
-            source,
-        },
-        CheckpointError::EncodeWhole { source, .. } => CheckpointError::EncodeWhole {
-            path: path.to_path_buf(),
-            source,
-        },
-        other => other,
-    })?;
+    let payload = encoded_state(world, fingerprint, kept).map_err(|e| e.at(path))?;
     let mut bytes = Vec::with_capacity(HEADER_BYTES + payload.len());
     bytes.extend_from_slice(MAGIC);
     bytes.extend_from_slice(&FORMAT.to_le_bytes());

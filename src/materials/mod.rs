@@ -150,8 +150,10 @@ pub struct UserModel {
 
 impl UserModel {
     /// The model `model`, named `name` in messages and in the scene's
-    /// fingerprint (which a checkpoint must match: give different models
-    /// different names).
+    /// fingerprint, which a checkpoint must match. The fingerprint sees the
+    /// name only, not the model's parameters: give a model with other
+    /// parameters another name, or a checkpoint of the old one resumes
+    /// under the new.
     pub fn new(name: impl Into<String>, model: impl ConstitutiveModel + 'static) -> Self {
         Self {
             name: name.into(),
