@@ -2,9 +2,9 @@
 //! `body_contacts.csv`.
 
 use super::records::{refill, samples_in_run};
-use super::{MpmPlugin, PluginSetup};
+use super::{MpmPlugin, PluginSetup, placed_bodies};
 use crate::checkpoint::{Checkpointed, TimeRecord};
-use crate::components::{MaterialPoints, bodies_in_scene_order};
+use crate::components::bodies_in_scene_order;
 use crate::math::Real;
 use crate::resources::{
     BodyContacts, BodyPairContact, BodyPairLaw, BodyPairLog, BodyPairSample, Clock, PairSummary,
@@ -119,12 +119,7 @@ fn layout_warnings(
     bodies: &[Entity],
     laws: &[BodyPairLaw],
 ) -> Vec<String> {
-    let placed: Vec<(&str, &MaterialPoints)> = scene
-        .bodies
-        .iter()
-        .zip(bodies)
-        .filter_map(|(spec, &e)| Some((spec.name.as_str(), world.get::<MaterialPoints>(e)?)))
-        .collect();
+    let placed = placed_bodies(scene, world, bodies);
     let mut warnings = body_overlap_warnings(&placed, laws);
     warnings.extend(body_contact_stability_warnings(
         scene.time.dt,

@@ -3,9 +3,8 @@
 //! update, nodal solve, grid-to-particle, the finiteness check and the
 //! clock.
 
-use super::{MpmPlugin, PluginSetup};
+use super::{MpmPlugin, PluginSetup, placed_bodies};
 use crate::checkpoint::Checkpointed;
-use crate::components::MaterialPoints;
 use crate::components::{GridLayer, RegionConstraint, RegionConstraints, bodies_in_scene_order};
 use crate::math::Real;
 use crate::resources::{
@@ -109,12 +108,7 @@ fn free_edge_warnings_at_the_start(
     bodies: &[Entity],
     grid: &Grid,
 ) -> Vec<String> {
-    let placed: Vec<(&str, &MaterialPoints)> = scene
-        .bodies
-        .iter()
-        .zip(bodies)
-        .filter_map(|(spec, &e)| Some((spec.name.as_str(), world.get::<MaterialPoints>(e)?)))
-        .collect();
+    let placed = placed_bodies(scene, world, bodies);
     let first = scene.stages.first();
     let mut start = grid.clone();
     start.edges = first

@@ -164,6 +164,20 @@ impl<'a> PluginSetup<'a> {
     }
 }
 
+/// Every body's name and points, in scene order (`bodies` their entities).
+fn placed_bodies<'w>(
+    scene: &'w Scene,
+    world: &'w World,
+    bodies: &[Entity],
+) -> Vec<(&'w str, &'w crate::components::MaterialPoints)> {
+    scene
+        .bodies
+        .iter()
+        .zip(bodies)
+        .filter_map(|(spec, &e)| Some((spec.name.as_str(), world.get(e)?)))
+        .collect()
+}
+
 /// What the plugins of a simulation registered: the state checkpoints
 /// carry, the CSV series the outputs write, and the warnings they raised.
 #[derive(Default)]
