@@ -11,6 +11,7 @@ use std::path::Path;
 use std::sync::OnceLock;
 
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -157,18 +158,7 @@ fn draw_lines_chart<DB: DrawingBackend>(
             padded_range(samples().map(|(x, _)| x)),
             padded_range(samples().map(|(_, y)| y)),
         )?;
-    let (x_range, y_range) = (chart.x_range(), chart.y_range());
-    let (x_span, y_span) = (x_range.end - x_range.start, y_range.end - y_range.start);
-    chart
-        .configure_mesh()
-        .light_line_style(RGBColor(238, 238, 238))
-        .x_desc(x_label)
-        .y_desc(y_label)
-        .x_label_formatter(&|v| tick_label(*v, x_span))
-        .y_label_formatter(&|v| tick_label(*v, y_span))
-        .label_style((FONT, 14))
-        .axis_desc_style((FONT, 16))
-        .draw()?;
+    draw_axes(&mut chart, x_label, y_label, 14)?;
 
     // About 7 pixels a character at the legend's 14-pixel font.
     let columns = (legend_width.saturating_sub(50) / 7).max(10) as usize;
@@ -437,23 +427,13 @@ fn draw_series_chart<DB: DrawingBackend>(
     };
     let x_range = padded_range(samples().map(|(x, _)| x));
     let y_range = padded_range(samples().map(|(_, y)| y));
-    let (x_span, y_span) = (x_range.end - x_range.start, y_range.end - y_range.start);
     let mut chart = ChartBuilder::on(&plot_area)
         .caption(title, (FONT, 26))
         .margin(15)
         .x_label_area_size(50)
         .y_label_area_size(80)
         .build_cartesian_2d(x_range, y_range)?;
-    chart
-        .configure_mesh()
-        .light_line_style(RGBColor(238, 238, 238))
-        .x_desc(x_label)
-        .y_desc(y_label)
-        .x_label_formatter(&|v| tick_label(*v, x_span))
-        .y_label_formatter(&|v| tick_label(*v, y_span))
-        .label_style((FONT, 15))
-        .axis_desc_style((FONT, 17))
-        .draw()?;
+    draw_axes(&mut chart, x_label, y_label, 15)?;
 
     let mut row = 0;
     for (index, s) in series.iter().enumerate() {
@@ -661,6 +641,28 @@ fn trim_fraction_zeros(number: &str) -> &str {
     } else {
         number
     }
+}
+
+/// Draws a line chart's light grid and its labelled axes, ticks labelled
+/// by [`tick_label`], in `font` pixels (the axis names two larger).
+fn draw_axes<DB: DrawingBackend>(
+    chart: &mut ChartContext<DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    x_label: &str,
+    y_label: &str,
+    font: u32,
+) -> DrawResult<DB> {
+    let (x_range, y_range) = (chart.x_range(), chart.y_range());
+    let (x_span, y_span) = (x_range.end - x_range.start, y_range.end - y_range.start);
+    chart
+        .configure_mesh()
+        .light_line_style(RGBColor(238, 238, 238))
+        .x_desc(x_label)
+        .y_desc(y_label)
+        .x_label_formatter(&|v| tick_label(*v, x_span))
+        .y_label_formatter(&|v| tick_label(*v, y_span))
+        .label_style((FONT, font))
+        .axis_desc_style((FONT, font + 2))
+        .draw()
 }
 
 /// A short label for a tick at `v` on an axis spanning `span`: plain up to
