@@ -247,6 +247,15 @@ pub fn de_xpic_order<'de, D: Deserializer<'de>>(d: D) -> Result<Option<u32>, D::
         .map_err(D::Error::custom)
 }
 
+/// `deserialize_with` form of [`positive`] for an optional value written
+/// `Some(x)`.
+pub fn de_option_positive<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Real>, D::Error> {
+    Option::<Real>::deserialize(d)?
+        .map(positive)
+        .transpose()
+        .map_err(D::Error::custom)
+}
+
 /// `deserialize_with` form of [`ratio`].
 pub fn de_ratio<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
     checked(d, ratio)

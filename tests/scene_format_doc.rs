@@ -61,7 +61,7 @@ fn sampled(tracer: &mut Tracer) -> Samples {
         .trace_value(&mut samples, &TimeSample { dt: 1e-3, end: 1.0 })
         .expect("time sample");
     let mohr_coulomb: MohrCoulomb = ron::from_str(
-        "(youngs_modulus: 1e7, poisson_ratio: 0.3, friction_angle: 30.0, deviatoric_eccentricity: Some(0.8))",
+        "(youngs_modulus: 1e7, poisson_ratio: 0.3, friction_angle: 30.0, deviatoric_eccentricity: Some(0.8), disconnected_above: Some(1.0))",
     )
     .expect("a valid Mohr–Coulomb material");
     tracer

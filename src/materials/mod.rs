@@ -96,6 +96,13 @@ pub trait ElasticPlastic: Send + Sync {
 
     /// Returns a trial stress to the admissible set.
     fn return_map(&self, trial: SymTensor) -> SymTensor;
+
+    /// Whether the point is disconnected at the end of `step` and carries
+    /// no stress (a granular material looser than its critical density);
+    /// never by default.
+    fn disconnected(&self, _step: &PointStep) -> bool {
+        false
+    }
 }
 
 impl<T: ElasticPlastic> ConstitutiveModel for T {
@@ -104,6 +111,11 @@ impl<T: ElasticPlastic> ConstitutiveModel for T {
     /// return took out of the elastic part).
     fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) -> Real {
         let elastic = self.elastic();
+        if self.disconnected(step) {
+            let released = 0.5 * elastic.compliance_product(stress, stress);
+            *stress = SymTensor::ZERO;
+            return released;
+        }
         let mut trial = *stress;
         elastic.update_stress(&mut trial, step);
         *stress = self.return_map(trial);
@@ -117,6 +129,12 @@ impl<T: ElasticPlastic> ConstitutiveModel for T {
     fn stored_energy_density(&self, stress: &SymTensor, f: &DMat2, f_zz: Real) -> Real {
         self.elastic().stored_energy_density(stress, f, f_zz)
     }
+}
+
+/// Whether a point of a granular material whose `disconnected_above` is
+/// `ratio` is looser than that at the end of `step` (V / V⁰ = det F F_zz).
+fn looser_than(ratio: Option<Real>, step: &PointStep) -> bool {
+    ratio.is_some_and(|j| step.f.determinant() * step.f_zz > j)
 }
 
 /// The constitutive models a scene can choose.

@@ -10,7 +10,7 @@
 //! q/p = 0.83 at failure against Mohr–Coulomb's 1.2); use `MohrCoulomb`
 //! where the axisymmetric strength matters.
 
-use super::{ElasticPlastic, LinearElastic};
+use super::{ElasticPlastic, LinearElastic, PointStep, looser_than};
 use crate::math::{Real, SymTensor};
 use crate::rules::{ParameterError, non_negative, poisson_ratio, positive};
 use serde::{Deserialize, Serialize};
@@ -36,6 +36,16 @@ pub struct DruckerPrager {
     /// a cohesionless soil carries no tension.
     #[serde(default)]
     pub tension_cutoff: Real,
+    /// Volume ratio V / V⁰ above which the material is disconnected, written
+    /// `Some(j)`, > 0: looser than its critical density, a granular
+    /// gas whose grains have lost contact, it carries no stress (Dunatunga
+    /// and Kamrin 2015). 1 takes the density the body was placed at as the
+    /// critical one. The stress of a disconnected point is zero and its
+    /// stored energy counts as dissipated; compressed back below the ratio,
+    /// the point loads again from zero stress. Default `None`: never
+    /// disconnected.
+    #[serde(default, deserialize_with = "crate::rules::de_option_positive")]
+    pub disconnected_above: Option<Real>,
 }
 
 /// η (or η̄) of eq. 16a/16c for an angle in degrees.
@@ -110,6 +120,10 @@ impl ElasticPlastic for DruckerPrager {
     fn return_map(&self, trial: SymTensor) -> SymTensor {
         self.prepared().return_map(trial)
     }
+
+    fn disconnected(&self, step: &PointStep) -> bool {
+        looser_than(self.disconnected_above, step)
+    }
 }
 
 impl DruckerPrager {
@@ -126,6 +140,7 @@ impl DruckerPrager {
             sigma_t: self.cutoff(),
             shear: elastic.shear_modulus(),
             bulk: elastic.lame_lambda() + 2.0 / 3.0 * elastic.shear_modulus(),
+            disconnected_above: self.disconnected_above,
         }
     }
 }
@@ -142,11 +157,16 @@ pub(crate) struct PreparedDruckerPrager {
     sigma_t: Real,
     shear: Real,
     bulk: Real,
+    disconnected_above: Option<Real>,
 }
 
 impl ElasticPlastic for PreparedDruckerPrager {
     fn elastic(&self) -> LinearElastic {
         self.elastic
+    }
+
+    fn disconnected(&self, step: &PointStep) -> bool {
+        looser_than(self.disconnected_above, step)
     }
 
     /// Returns a trial stress to the admissible region (Huang et al. 2015
@@ -194,7 +214,8 @@ impl ElasticPlastic for PreparedDruckerPrager {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::materials::{ConstitutiveModel, PointStep};
+    use crate::materials::ConstitutiveModel;
+    use crate::math::{DMat2, DVec2};
 
     const SAND: DruckerPrager = DruckerPrager {
         youngs_modulus: 2e7,
@@ -203,6 +224,7 @@ mod tests {
         dilation_angle: 0.0,
         cohesion: 1e4,
         tension_cutoff: 5e3,
+        disconnected_above: None,
     };
 
     /// Drives simple shear γ̇ in steps from an isotropic state σ_m = p0.
@@ -261,6 +283,42 @@ mod tests {
         // (compression grows): the mean stress becomes more negative.
         assert!(mean < -1e5, "{mean}");
         assert!(dilatant.shear_yield(last).abs() < 1e-6 * 1e5);
+    }
+
+    #[test]
+    fn a_point_looser_than_its_critical_density_carries_no_stress() {
+        let granular = DruckerPrager {
+            disconnected_above: Some(1.0),
+            ..SAND
+        };
+        let compressed = SymTensor::new(-2e4, -1e4, 3e3, -1.5e4);
+        let step = |j: Real| PointStep {
+            f: DMat2::from_diagonal(DVec2::new(j, 1.0)),
+            ..PointStep::rate(SymTensor::ZERO, 0.0, 1e-4)
+        };
+        // Denser than placed (J < 1): the stress stays and nothing is
+        // dissipated (a zero rate, inside the cone).
+        let mut s = compressed;
+        let kept = granular.prepared().update_stress(&mut s, &step(0.99));
+        assert_eq!((s, kept), (compressed, 0.0));
+        // Looser (J > 1): the stress is zero, and its stored energy,
+        // ½ σ : C⁻¹ : σ, is what the step dissipated.
+        let stored = 0.5
+            * granular
+                .elastic()
+                .compliance_product(&compressed, &compressed);
+        let released = granular.prepared().update_stress(&mut s, &step(1.01));
+        assert_eq!(s, SymTensor::ZERO);
+        assert!(
+            (released - stored).abs() <= 1e-12 * stored,
+            "{released} vs {stored}"
+        );
+        // Loaded again from zero once it is denser than placed.
+        let d = SymTensor::new(-1e-3, 0.0, 0.0, 0.0);
+        granular
+            .prepared()
+            .update_stress(&mut s, &PointStep { d, ..step(0.99) });
+        assert!(s.xx < 0.0);
     }
 
     #[test]

@@ -49,7 +49,7 @@
 //! Every branch ends on or inside the admissible set, so a finite trial
 //! always gives a finite, admissible stress.
 
-use super::{ElasticPlastic, LinearElastic};
+use super::{ElasticPlastic, LinearElastic, PointStep, looser_than};
 use crate::math::{Real, SymTensor};
 use crate::rules::{ParameterError, RuleError, non_negative, poisson_ratio, positive};
 use serde::{Deserialize, Deserializer, Serialize, de::Error};
@@ -96,6 +96,16 @@ pub struct MohrCoulomb {
     /// Mohr–Coulomb hexagon.
     #[serde(default, deserialize_with = "de_eccentricity")]
     pub deviatoric_eccentricity: Option<Real>,
+    /// Volume ratio V / V⁰ above which the material is disconnected, written
+    /// `Some(j)`, > 0: looser than its critical density, a granular
+    /// gas whose grains have lost contact, it carries no stress (Dunatunga
+    /// and Kamrin 2015). 1 takes the density the body was placed at as the
+    /// critical one. The stress of a disconnected point is zero and its
+    /// stored energy counts as dissipated; compressed back below the ratio,
+    /// the point loads again from zero stress. Default `None`: never
+    /// disconnected.
+    #[serde(default, deserialize_with = "crate::rules::de_option_positive")]
+    pub disconnected_above: Option<Real>,
 }
 
 /// Abaqus's default meridional eccentricity.
@@ -533,6 +543,10 @@ impl ElasticPlastic for MohrCoulomb {
     fn return_map(&self, trial: SymTensor) -> SymTensor {
         self.prepared().return_map(trial)
     }
+
+    fn disconnected(&self, step: &PointStep) -> bool {
+        looser_than(self.disconnected_above, step)
+    }
 }
 
 impl MohrCoulomb {
@@ -542,6 +556,7 @@ impl MohrCoulomb {
         PreparedMohrCoulomb {
             elastic: self.elastic(),
             surfaces: Surfaces::new(self),
+            disconnected_above: self.disconnected_above,
         }
     }
 }
@@ -552,11 +567,16 @@ impl MohrCoulomb {
 pub(crate) struct PreparedMohrCoulomb {
     elastic: LinearElastic,
     surfaces: Surfaces,
+    disconnected_above: Option<Real>,
 }
 
 impl ElasticPlastic for PreparedMohrCoulomb {
     fn elastic(&self) -> LinearElastic {
         self.elastic
+    }
+
+    fn disconnected(&self, step: &PointStep) -> bool {
+        looser_than(self.disconnected_above, step)
     }
 
     /// Returns a trial stress to the admissible set (see the module docs).

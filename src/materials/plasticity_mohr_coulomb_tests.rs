@@ -16,6 +16,7 @@ const SAND: MohrCoulomb = MohrCoulomb {
     tension_cutoff: 2e3,
     meridional_eccentricity: 0.1,
     deviatoric_eccentricity: None,
+    disconnected_above: None,
 };
 
 /// Eq. 13 literally: F = R_mc(Θ, φ) q − p tan φ − c with p = −tr σ / 3,
