@@ -13,7 +13,7 @@ use crate::files::{located, partial_path};
 use crate::math::{DVec2, Real};
 use crate::resources::{BlockLog, EnergyLog, Grid, Probes};
 use crate::rules::file_safe;
-use crate::scene::{CurveSpec, PROBE_PLOT_PREFIX, Scene};
+use crate::scene::{CurveSpec, MotionSpec, PROBE_PLOT_PREFIX, Scene};
 use crate::simulation::Simulation;
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -53,6 +53,9 @@ pub struct RunOutput {
     animation: Option<Animation>,
     /// The run's name, for the animation's titles.
     name: String,
+    /// Names of the blocks that may turn (all but the fixed ones), for
+    /// `block_rotation.png`.
+    moving_blocks: Vec<String>,
 }
 
 /// One CSV series open for appending.
@@ -175,6 +178,7 @@ impl RunOutput {
             bodies,
             animation,
             name: sim.name().to_owned(),
+            moving_blocks: moving_blocks(scene),
         };
         for &record in sim.csv_records() {
             let file = output.open_series(record, sim.world(), false)?;
@@ -248,6 +252,7 @@ impl RunOutput {
             bodies: scene.bodies.iter().map(|b| b.name.clone()).collect(),
             animation: animation(scene, sim, frame_every),
             name: sim.name().to_owned(),
+            moving_blocks: moving_blocks(scene),
         };
         // The series as the checkpoint holds them, then appended to.
         for &record in sim.csv_records() {
@@ -349,6 +354,7 @@ impl RunOutput {
             write_curve(&mut self.folder, curve, *start, blocks, per)?;
         }
         self.plot_energy(energy, per)?;
+        self.plot_block_rotations(blocks)?;
         self.plot_probes(probes)?;
         let grid = world.resource::<Grid>();
         self.plot_snapshot(sim.name(), grid)?;
@@ -445,6 +451,37 @@ impl RunOutput {
         })
     }
 
+    /// `block_rotation.png`: the rotation of every block that is not fixed,
+    /// in degrees against time (`blocks.csv` has it in radians).
+    fn plot_block_rotations(&mut self, blocks: &BlockLog) -> std::io::Result<()> {
+        if self.moving_blocks.is_empty() {
+            return Ok(());
+        }
+        let curves: Vec<Vec<(Real, Real)>> = self
+            .moving_blocks
+            .iter()
+            .map(|name| {
+                let index = blocks.names.iter().position(|n| n == name);
+                blocks
+                    .samples
+                    .iter()
+                    .filter(|s| Some(s.block as usize) == index)
+                    .map(|s| (s.time, s.angle.to_degrees()))
+                    .collect()
+            })
+            .collect();
+        let series = lines(self.moving_blocks.iter().map(String::as_str), &curves);
+        self.folder.write_file("block_rotation.png", |path| {
+            plot_series(
+                path,
+                "Rotation of the blocks",
+                "time (s)",
+                "rotation (degrees, counter-clockwise)",
+                &series,
+            )
+        })
+    }
+
     fn plot_probes(&mut self, probes: &Probes) -> std::io::Result<()> {
         let groups: [ProbePlot; 3] = [
             (
@@ -527,6 +564,16 @@ fn animation(scene: &Scene, sim: &Simulation, frame_every: u64) -> Option<Animat
         field,
         sim.clock().total_steps() / frame_every + 2,
     ))
+}
+
+/// The names of the scene's blocks that are not fixed.
+fn moving_blocks(scene: &Scene) -> Vec<String> {
+    scene
+        .blocks
+        .iter()
+        .filter(|b| b.motion != MotionSpec::Fixed)
+        .map(|b| b.name.clone())
+        .collect()
 }
 
 /// A line series for each of `names` over the curve of the same rank.

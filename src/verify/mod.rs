@@ -21,6 +21,7 @@ pub mod quad4;
 pub mod report;
 pub mod rings;
 pub mod sliding;
+pub mod stacked_blocks;
 pub mod toppling;
 pub mod wave;
 
@@ -245,6 +246,13 @@ pub const CASES: &[Case] = &[
         about: "two Neo-Hookean rings colliding at ±30 m/s: rebound, energy, no fragmentation",
         minutes: 0.1,
         run: rings::run,
+    },
+    Case {
+        name: "stacked_blocks",
+        source: "paper 4.5.1",
+        about: "granular column collapsing onto three stacked blocks: arrival, blocks knocked off, block 2 at rest",
+        minutes: 0.5,
+        run: stacked_blocks::run,
     },
     Case {
         name: "hertz_disks",
