@@ -4,6 +4,7 @@ use crate::components::{
     BlockContacts, BlockId, BodyIndex, BodyName, DampedEnergy, Material, MaterialPoints,
     PartReactions, PointEnergies, Pose, Reaction, RigidVelocity, sort_into_scene_order,
 };
+use crate::materials::MaterialModel;
 use crate::math::DVec2;
 use crate::parallel::MIN_POINTS_PER_TASK;
 use crate::resources::{
@@ -23,12 +24,12 @@ pub fn check_finite(
     clock: Res<Clock>,
     mut diagnostics: ResMut<Diagnostics>,
     mut order: Local<Vec<(BodyIndex, Entity)>>,
-    bodies: Query<(Entity, &BodyIndex, &BodyName, &MaterialPoints)>,
+    bodies: Query<(Entity, &BodyIndex, &BodyName, &MaterialPoints, &Material)>,
 ) {
-    sort_into_scene_order(&mut order, bodies.iter().map(|(e, i, _, _)| (*i, e)));
-    for (_, name, points) in order
+    sort_into_scene_order(&mut order, bodies.iter().map(|(e, i, ..)| (*i, e)));
+    for (name, points, material) in order
         .iter()
-        .filter_map(|(_, e)| bodies.get(*e).ok().map(|b| (b.1, b.2, b.3)))
+        .filter_map(|(_, e)| bodies.get(*e).ok().map(|b| (b.2, b.3, b.4)))
     {
         if all_finite(points) {
             continue;
@@ -43,9 +44,24 @@ pub fn check_finite(
                 body: name.0.clone(),
                 point: p,
                 field,
-                detail,
+                detail: detail + granular_hint(material),
             });
         }
+    }
+}
+
+/// For a granular material that is never disconnected, what often breaks
+/// it and the option against it; nothing for other materials.
+fn granular_hint(material: &Material) -> &'static str {
+    let never_disconnected = match &material.model {
+        MaterialModel::DruckerPrager(m) => m.disconnected_above.is_none(),
+        MaterialModel::MohrCoulomb(m) => m.disconnected_above.is_none(),
+        _ => false,
+    };
+    if never_disconnected {
+        "; in a granular flow, points stretched far beyond their placed volume and then squeezed can do this: the material's `disconnected_above: Some(1.0)` lets points looser than placed carry no stress"
+    } else {
+        ""
     }
 }
 
@@ -240,5 +256,47 @@ pub fn record_blocks(
             continue;
         };
         log.record(clock.time, (id, reaction, parts, pose, velocity));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::materials::{DruckerPrager, LinearElastic};
+
+    #[test]
+    fn a_granular_material_that_never_disconnects_gets_the_hint() {
+        let material = |model| Material {
+            name: "m".into(),
+            density: 1300.0,
+            model,
+        };
+        let sand = DruckerPrager {
+            youngs_modulus: 5e4,
+            poisson_ratio: 0.4,
+            friction_angle: 22.0,
+            dilation_angle: 0.0,
+            cohesion: 0.0,
+            tension_cutoff: 0.0,
+            disconnected_above: None,
+        };
+        let hint = granular_hint(&material(MaterialModel::DruckerPrager(sand)));
+        assert!(hint.contains("disconnected_above"), "{hint}");
+        let disconnecting = DruckerPrager {
+            disconnected_above: Some(1.0),
+            ..sand
+        };
+        assert_eq!(
+            granular_hint(&material(MaterialModel::DruckerPrager(disconnecting))),
+            ""
+        );
+        let elastic = LinearElastic {
+            youngs_modulus: 1e6,
+            poisson_ratio: 0.3,
+        };
+        assert_eq!(
+            granular_hint(&material(MaterialModel::LinearElastic(elastic))),
+            ""
+        );
     }
 }
