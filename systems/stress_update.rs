@@ -64,7 +64,9 @@ pub fn update_stress(
                 geometry,
             };
             match &material.model {
-                MaterialModel::LinearElastic(m) => step.apply(m, &mut points, &scratch.stencils),
+                MaterialModel::LinearElastic(m) => {
+                    step.apply(&m.prepared(), &mut points, &scratch.stencils)
+                }
                 MaterialModel::NeoHookean(m) => step.apply(m, &mut points, &scratch.stencils),
                 MaterialModel::MohrCoulomb(m) => {
                     step.apply(&m.prepared(), &mut points, &scratch.stencils)

@@ -51,13 +51,38 @@ impl LinearElastic {
     }
 }
 
-impl ConstitutiveModel for LinearElastic {
-    /// The Jaumann-rate update; dissipates nothing.
-    #[inline]
-    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) -> Real {
+impl LinearElastic {
+    /// The model with λ and μ worked out once, as the stress update calls
+    /// it for every point.
+    pub(crate) fn prepared(&self) -> PreparedElastic {
+        PreparedElastic {
+            model: *self,
+            lambda: self.lame_lambda(),
+            shear: self.shear_modulus(),
+        }
+    }
+}
+
+/// A [`LinearElastic`] model with its Lamé constants worked out.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PreparedElastic {
+    model: LinearElastic,
+    lambda: Real,
+    shear: Real,
+}
+
+impl PreparedElastic {
+    /// The model it was prepared from.
+    pub(crate) fn model(&self) -> LinearElastic {
+        self.model
+    }
+
+    /// The Jaumann-rate update of `stress` over `step`.
+    #[inline(always)]
+    pub(crate) fn advance(&self, stress: &mut SymTensor, step: &PointStep) {
         let PointStep { d, w, dt, .. } = *step;
-        let lambda_tr = self.lame_lambda() * (d.xx + d.yy + d.zz) * dt;
-        let two_mu = 2.0 * self.shear_modulus() * dt;
+        let lambda_tr = self.lambda * (d.xx + d.yy + d.zz) * dt;
+        let two_mu = 2.0 * self.shear * dt;
         let elastic = SymTensor::new(
             lambda_tr + two_mu * d.xx,
             lambda_tr + two_mu * d.yy,
@@ -65,6 +90,34 @@ impl ConstitutiveModel for LinearElastic {
             lambda_tr + two_mu * d.zz,
         );
         *stress += jaumann_rotation(stress, w, dt) + elastic;
+    }
+}
+
+impl ConstitutiveModel for PreparedElastic {
+    #[inline]
+    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) -> Real {
+        self.advance(stress, step);
+        0.0
+    }
+
+    fn dissipates() -> bool {
+        false
+    }
+
+    fn p_wave_modulus(&self) -> Real {
+        self.model.p_wave_modulus()
+    }
+
+    fn stored_energy_density(&self, s: &SymTensor, f: &DMat2, f_zz: Real) -> Real {
+        self.model.stored_energy_density(s, f, f_zz)
+    }
+}
+
+impl ConstitutiveModel for LinearElastic {
+    /// The Jaumann-rate update; dissipates nothing.
+    #[inline]
+    fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) -> Real {
+        self.prepared().advance(stress, step);
         0.0
     }
 

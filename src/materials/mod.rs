@@ -97,6 +97,13 @@ pub trait ElasticPlastic: Send + Sync {
     /// Returns a trial stress to the admissible set.
     fn return_map(&self, trial: SymTensor) -> SymTensor;
 
+    /// The elastic trial: `stress` advanced over `step` by the elastic
+    /// part (a model with its moduli worked out overrides it).
+    #[inline]
+    fn elastic_trial(&self, stress: &mut SymTensor, step: &PointStep) {
+        self.elastic().update_stress(stress, step);
+    }
+
     /// Whether the point is disconnected at the end of `step` and carries
     /// no stress (a granular material looser than its critical density);
     /// never by default.
@@ -117,8 +124,12 @@ impl<T: ElasticPlastic> ConstitutiveModel for T {
             return released;
         }
         let mut trial = *stress;
-        elastic.update_stress(&mut trial, step);
+        self.elastic_trial(&mut trial, step);
         *stress = self.return_map(trial);
+        if *stress == trial {
+            // Inside the admissible set: no plastic strain.
+            return 0.0;
+        }
         elastic.compliance_product(stress, &(trial - *stress))
     }
 

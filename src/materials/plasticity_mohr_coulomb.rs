@@ -49,6 +49,7 @@
 //! Every branch ends on or inside the admissible set, so a finite trial
 //! always gives a finite, admissible stress.
 
+use super::elasticity_linear::PreparedElastic;
 use super::{ElasticPlastic, LinearElastic, PointStep, looser_than};
 use crate::math::{Real, SymTensor};
 use crate::rules::{ParameterError, RuleError, non_negative, poisson_ratio, positive};
@@ -554,7 +555,7 @@ impl MohrCoulomb {
     /// the stress update calls it for every point.
     pub(crate) fn prepared(&self) -> PreparedMohrCoulomb {
         PreparedMohrCoulomb {
-            elastic: self.elastic(),
+            elastic: self.elastic().prepared(),
             surfaces: Surfaces::new(self),
             disconnected_above: self.disconnected_above,
         }
@@ -565,14 +566,19 @@ impl MohrCoulomb {
 /// moduli worked out once, for the per-point return.
 #[derive(Clone, Copy)]
 pub(crate) struct PreparedMohrCoulomb {
-    elastic: LinearElastic,
+    elastic: PreparedElastic,
     surfaces: Surfaces,
     disconnected_above: Option<Real>,
 }
 
 impl ElasticPlastic for PreparedMohrCoulomb {
     fn elastic(&self) -> LinearElastic {
-        self.elastic
+        self.elastic.model()
+    }
+
+    #[inline(always)]
+    fn elastic_trial(&self, stress: &mut SymTensor, step: &PointStep) {
+        self.elastic.advance(stress, step);
     }
 
     fn disconnected(&self, step: &PointStep) -> bool {
