@@ -11,7 +11,8 @@ use crate::resources::{
     Clock, Diagnostics, EdgeConditions, Gravity, Grid, Settings, SharedLayers, UpdateScheme,
 };
 use crate::scene::{
-    Scene, SceneError, free_edge_warnings, off_step_warnings, undamped_contact_warning,
+    Scene, SceneError, free_edge_warnings, granular_transfer_warning, off_step_warnings,
+    undamped_contact_warning,
 };
 use crate::systems::{
     DiagnosticsStep, MpmSystems, advance_clock, check_finite, grid_to_particle, particle_to_grid,
@@ -41,6 +42,7 @@ impl MpmPlugin for CorePlugin {
             &grid,
         ));
         setup.warn_all(undamped_contact_warning(scene));
+        setup.warn_all(granular_transfer_warning(scene));
         let shared = share_layers(setup.world, &bodies, &scene.shared_layers());
         let world = &mut *setup.world;
         world.insert_resource(grid);

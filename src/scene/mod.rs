@@ -18,6 +18,7 @@ mod shapes;
 mod spawn;
 mod spawn_blocks;
 mod step_warnings;
+mod transfer_warnings;
 mod validate;
 mod velocity_field;
 
@@ -34,6 +35,7 @@ pub use shapes::{Shape, ShapeError};
 pub(crate) use spawn::spawn_scene;
 pub(crate) use spawn_blocks::block_pair_laws;
 pub(crate) use step_warnings::off_step_warnings;
+pub(crate) use transfer_warnings::granular_transfer_warning;
 pub use velocity_field::{VelocityField, VelocityFieldError};
 
 use crate::components::{BodyAcceleration, RegionConstraint, RigidVelocity};
