@@ -5,6 +5,7 @@
 
 mod common;
 
+use mpdem::plugins::FrontLog;
 use mpdem::prelude::*;
 use mpdem::resources::BlockLog;
 
@@ -39,6 +40,14 @@ fn the_flow_reaches_the_stack_and_moves_the_free_blocks_the_same_on_one_and_two_
         let mut sim = Simulation::from_scene(&scene).unwrap();
         sim.run().expect("the reduced collapse runs to its end");
         let motions = ["block_1", "block_2", "block_3"].map(|b| block_motion(&sim, b));
+        let fronts = &sim.world().resource::<FrontLog>().samples;
+        let last = *fronts.last().expect("the scene records the front");
+        assert!(
+            fronts.iter().all(|s| s.bulk <= s.farthest),
+            "a bulk front beyond the farthest point"
+        );
+        // The flow has passed block 1's upstream face, 0.3 m.
+        assert!(last.bulk > 0.3, "the bulk front is at {} m", last.bulk);
         (sim.state_hash(), motions)
     };
     let (one, motions) = common::with_threads(1, run);

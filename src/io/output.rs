@@ -11,6 +11,7 @@ use super::vtk::{
 use crate::components::{BlockId, BlockOutline, BodyIndex, MaterialPoints, Pose};
 use crate::files::{located, partial_path};
 use crate::math::{DVec2, Real};
+use crate::plugins::FrontLog;
 use crate::resources::{BlockLog, EnergyLog, Grid, Probes};
 use crate::rules::file_safe;
 use crate::scene::{CurveSpec, MotionSpec, PROBE_PLOT_PREFIX, Scene};
@@ -355,6 +356,9 @@ impl RunOutput {
         }
         self.plot_energy(energy, per)?;
         self.plot_block_rotations(blocks)?;
+        if let Some(fronts) = world.get_resource::<FrontLog>() {
+            self.plot_fronts(fronts)?;
+        }
         self.plot_probes(probes)?;
         let grid = world.resource::<Grid>();
         self.plot_snapshot(sim.name(), grid)?;
@@ -479,6 +483,24 @@ impl RunOutput {
                 "rotation (degrees, counter-clockwise)",
                 &series,
             )
+        })
+    }
+
+    /// `fronts.png`: each body's farthest point and bulk front against
+    /// time (`output.fronts`).
+    fn plot_fronts(&mut self, fronts: &FrontLog) -> std::io::Result<()> {
+        let mut names = Vec::new();
+        let mut curves: Vec<Vec<(Real, Real)>> = Vec::new();
+        for (k, body) in self.bodies.iter().enumerate() {
+            let of_body = || fronts.samples.iter().filter(|s| s.body as usize == k);
+            names.push(format!("{body}, farthest"));
+            curves.push(of_body().map(|s| (s.time, s.farthest)).collect());
+            names.push(format!("{body}, 99.9%"));
+            curves.push(of_body().map(|s| (s.time, s.bulk)).collect());
+        }
+        let series = lines(names.iter().map(String::as_str), &curves);
+        self.folder.write_file("fronts.png", |path| {
+            plot_series(path, "Fronts along +x", "time (s)", "front x (m)", &series)
         })
     }
 

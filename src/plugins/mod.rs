@@ -6,12 +6,15 @@
 
 mod body_contact;
 mod core;
+mod fronts;
 mod records;
 mod rigid_blocks;
 mod stages;
 
 use body_contact::BodyContactPlugin;
 use core::CorePlugin;
+use fronts::FrontsPlugin;
+pub use fronts::{FrontLog, FrontSample};
 use records::RecordsPlugin;
 use rigid_blocks::RigidBlocksPlugin;
 use stages::StagesPlugin;
@@ -51,9 +54,10 @@ pub trait MpmPlugin: Sync {
 /// The engine's features, in the order they are built (a plugin may use
 /// the resources of those before it; stages come last, as entering the
 /// first stage changes what the others set up).
-pub(crate) const DEFAULT_PLUGINS: [&dyn MpmPlugin; 5] = [
+pub(crate) const DEFAULT_PLUGINS: [&dyn MpmPlugin; 6] = [
     &CorePlugin,
     &RecordsPlugin,
+    &FrontsPlugin,
     &RigidBlocksPlugin,
     &BodyContactPlugin,
     &StagesPlugin,

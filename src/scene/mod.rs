@@ -432,6 +432,10 @@ pub struct OutputSpec {
     /// Writes `animation.gif` from the frames: the points coloured by this
     /// field, the block outlines and the time. Default: none.
     pub animation: Option<AnimatedField>,
+    /// Records each body's front along +x with the probes, in
+    /// `fronts.csv` and `fronts.png`: its farthest point and the x beyond
+    /// which 0.1% of its points lie. Default false.
+    pub fronts: bool,
 }
 
 /// The field an animation colours the points by.
