@@ -4,13 +4,16 @@
 //! reaches the stack, where and when block 2 comes to rest and that grains
 //! fill the gap between blocks 1 and 2; these are judged, with the
 //! contacts' integrity, the energy balance and determinism. Block 2's
-//! rotation is reported: the experimental curve is not public.
+//! rotation is reported: the experimental curve is not public. It writes
+//! block 2's rotation as `block_2_rotation.csv`; the front is the scene's
+//! `fronts` record.
 
 use super::{Check, Context, Curve, Figure, Measured, VerifyError, body, largest, percent};
 use crate::Simulation;
 use crate::components::{BlockContacts, BlockId, Pose, RigidShape};
 use crate::contact::disk_shape_contact;
 use crate::math::Real;
+use crate::plugins::FrontLog;
 use crate::resources::{BlockLog, BlockSample, EnergyLog};
 use std::path::Path;
 
@@ -38,9 +41,6 @@ const ON_FLOOR: Real = 1e-3;
 const PUBLISHED_ARRIVAL: Real = 0.25;
 const PUBLISHED_REST: Real = 0.4;
 
-/// Steps between two samples of the front.
-const FRONT_EVERY: u64 = 50;
-
 /// What the run measures as it goes.
 #[derive(Default)]
 struct Watch {
@@ -49,25 +49,15 @@ struct Watch {
     /// Deepest overlap of a grain with a block over the grain disk's
     /// diameter (1: the centre on the surface's far side of a thin layer).
     deepest: Real,
-    /// (time, farthest x of the grains, x beyond which 0.1% of them lie).
-    front: Vec<(Real, Real, Real)>,
 }
 
 impl Watch {
     fn after_step(&mut self, sim: &mut Simulation) {
         let time = sim.clock().time;
-        let step = sim.clock().step;
         let Some(points) = sim.points_of("column") else {
             return;
         };
         let (position, radius) = (points.position.clone(), points.contact_radius.clone());
-        if step.is_multiple_of(FRONT_EVERY) {
-            let mut xs: Vec<Real> = position.iter().map(|p| p.x).collect();
-            xs.sort_by(Real::total_cmp);
-            let bulk = xs[(xs.len() as Real * 0.999) as usize];
-            self.front
-                .push((time, *xs.last().unwrap_or(&Real::NAN), bulk));
-        }
         let world = sim.world_mut();
         let mut blocks = world.query::<(&BlockId, &BlockContacts, &RigidShape, &Pose)>();
         for (name, contacts, shape, pose) in blocks.iter(world) {
@@ -254,6 +244,12 @@ pub fn run(ctx: &Context) -> Result<Measured, VerifyError> {
         hash == one_thread,
     ));
 
+    // The scene records the front (`output.fronts`).
+    let fronts = sim
+        .world()
+        .get_resource::<FrontLog>()
+        .map(|log| log.samples.clone())
+        .unwrap_or_default();
     let dir = ctx.out_dir("stacked_blocks")?;
     let rotation: Vec<(Real, Real)> = block_2
         .iter()
@@ -266,16 +262,6 @@ pub fn run(ctx: &Context) -> Result<Measured, VerifyError> {
         &rotation
             .iter()
             .map(|(t, a)| format!("{t:e},{a:e}"))
-            .collect::<Vec<_>>(),
-    )?;
-    write_csv(
-        &dir,
-        "front.csv",
-        "time,front,front_99_9",
-        &watch
-            .front
-            .iter()
-            .map(|(t, f, b)| format!("{t:e},{f:e},{b:e}"))
             .collect::<Vec<_>>(),
     )?;
     let reach = largest(rotation.iter().map(|p| p.1.abs())).max(1.0);
@@ -300,11 +286,11 @@ pub fn run(ctx: &Context) -> Result<Measured, VerifyError> {
     )
     .with(Curve::computed(
         "farthest grain",
-        watch.front.iter().map(|(t, f, _)| (*t, *f)).collect(),
+        fronts.iter().map(|s| (s.time, s.farthest)).collect(),
     ))
     .with(Curve::computed(
         "x beyond which 0.1% of the grains lie",
-        watch.front.iter().map(|(t, _, b)| (*t, *b)).collect(),
+        fronts.iter().map(|s| (s.time, s.bulk)).collect(),
     ))
     .with(Curve::reference(
         "block 1's upstream face",
