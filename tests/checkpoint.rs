@@ -130,6 +130,17 @@ fn point_block_contacts_resume_between_neighbour_list_rebuilds() {
 }
 
 #[test]
+fn the_fronts_record_resumes_with_its_samples() {
+    // The stacked blocks record each body's front (`output.fronts`); stop
+    // between two of its samples (every 10 steps).
+    let mut scene = common::load_scene("stacked_blocks.ron");
+    scene.grid.cell_size *= 2.0;
+    scene.grid.cells = (scene.grid.cells.0 / 2, scene.grid.cells.1 / 2);
+    assert!(scene.output.fronts);
+    resumes_bit_identically("fronts", &scene, 205, 400);
+}
+
+#[test]
 fn body_contacts_resume_with_their_tangential_springs() {
     let mut rings = common::load_scene("two_rings.ron");
     for body in &mut rings.bodies {
