@@ -10,7 +10,7 @@
 
 use super::{Check, Context, Curve, Figure, Measured, VerifyError, body, largest, percent};
 use crate::Simulation;
-use crate::components::{BlockContacts, BlockId, Pose, RigidShape};
+use crate::components::{BlockContacts, BlockId, MaterialPoints, Pose, RigidShape};
 use crate::contact::disk_shape_contact;
 use crate::math::Real;
 use crate::plugins::FrontLog;
@@ -54,23 +54,24 @@ struct Watch {
 impl Watch {
     fn after_step(&mut self, sim: &mut Simulation) {
         let time = sim.clock().time;
-        let Some(points) = sim.points_of("column") else {
-            return;
-        };
-        let (position, radius) = (points.position.clone(), points.contact_radius.clone());
         let world = sim.world_mut();
         let mut blocks = world.query::<(&BlockId, &BlockContacts, &RigidShape, &Pose)>();
+        let world = &*world;
         for (name, contacts, shape, pose) in blocks.iter(world) {
             if !contacts.current.is_empty() && STACK.contains(&name.name.as_str()) {
                 self.arrival.get_or_insert(time);
             }
             let placed = pose.to_parry();
             for c in &contacts.current {
+                let Some(points) = world.get::<MaterialPoints>(c.body) else {
+                    continue;
+                };
                 let p = c.point as usize;
+                let radius = points.contact_radius[p];
                 if let Some(found) =
-                    disk_shape_contact(position[p], radius[p], shape.0.as_ref(), &placed)
+                    disk_shape_contact(points.position[p], radius, shape.0.as_ref(), &placed)
                 {
-                    self.deepest = self.deepest.max(found.depth / (2.0 * radius[p]));
+                    self.deepest = self.deepest.max(found.depth / (2.0 * radius));
                 }
             }
         }
