@@ -276,6 +276,13 @@ pub const CASES: &[Case] = &[
         run: pile::run_axisymmetric,
     },
     Case {
+        name: "pile_penetration_deep",
+        source: "paper 4.3, to 12R",
+        about: "both piles driven to z/R = 12 with the fixed base 6R below the tip: whether q_c levels off",
+        minutes: 25.0,
+        run: pile::run_deep,
+    },
+    Case {
         name: "dam_break",
         source: "paper 4.5.2",
         about: "dam break on an elastic cantilever beam: the impact on the beam",
