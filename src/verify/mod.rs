@@ -279,7 +279,7 @@ pub const CASES: &[Case] = &[
         name: "pile_penetration_deep",
         source: "paper 4.3, to 12R",
         about: "both piles driven to z/R = 12 with the fixed base 6R below the tip: whether q_c levels off",
-        minutes: 25.0,
+        minutes: 20.0,
         run: pile::run_deep,
     },
     Case {

@@ -135,7 +135,7 @@ const DEEP_BASE_BELOW_TIP: Real = 6.0;
 const LEVEL_RISE: Real = 0.05;
 
 /// Both pile scenes driven to z/R = 12 in soil deepened so that the fixed
-/// base lies 6R below the tip at the end (about 25 minutes on 2 cores):
+/// base lies 6R below the tip at the end (about 20 minutes):
 /// whether q_c levels off, and from where. Reported: the paper's curve levels
 /// off from z/R ≈ 3–5, but Susila and Hryciw's plateau is the judged case's.
 pub fn run_deep(ctx: &Context) -> Result<Measured, VerifyError> {
