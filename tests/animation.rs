@@ -1,6 +1,8 @@
 //! `output.animation` writes `animation.gif`: one GIF frame per VTK frame
 //! of a short run, which show the points moving.
 
+mod common;
+
 use mpdem::prelude::*;
 use mpdem::runner::{RunOptions, Runner, Start};
 use mpdem::scene::AnimatedField;
@@ -28,10 +30,10 @@ fn an_animation_has_a_frame_per_vtk_frame_and_shows_the_motion() {
     scene.time.end = 0.1;
     scene.output.frame_interval = Some(0.01);
     scene.output.animation = Some(AnimatedField::Displacement);
-    let out = std::env::temp_dir().join(format!("mpdem-animation-{}", std::process::id()));
+    let out = common::TempFolder::new("animation");
     let options = RunOptions {
         start: Start::Restart,
-        ..RunOptions::into_folder(&out)
+        ..RunOptions::into_folder(out.to_path_buf())
     };
     let mut runner = Runner::new(&scene, None, options).unwrap_or_else(|e| panic!("{e}"));
     runner
@@ -39,7 +41,6 @@ fn an_animation_has_a_frame_per_vtk_frame_and_shows_the_motion() {
         .unwrap_or_else(|e| panic!("{e}"));
     let (frames, (width, height)) = gif_frames(&out.join("animation.gif"));
     let listed = std::fs::read_to_string(out.join("outputs.txt")).expect("the list");
-    std::fs::remove_dir_all(&out).ok();
     // Frames at t = 0, 0.01, ..., 0.1.
     assert_eq!(frames.len(), 11);
     assert_eq!(width, 1000);

@@ -4,6 +4,8 @@
 //! expects (`// expect: ...`) at the file, line and column its second line
 //! gives (`// at: LINE:COL`), no panic, and nothing written.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -52,7 +54,7 @@ fn cases() -> Vec<Case> {
 fn every_malformed_scene_is_refused_with_where_and_what_and_nothing_written() {
     let cases = cases();
     assert!(cases.len() >= 40, "{} malformed scenes", cases.len());
-    let out = std::env::temp_dir().join(format!("mpdem-bad-input-{}", std::process::id()));
+    let out = common::TempFolder::new("bad-input");
     let mut failures = Vec::new();
     for case in &cases {
         let name = case
@@ -99,6 +101,5 @@ fn every_malformed_scene_is_refused_with_where_and_what_and_nothing_written() {
             }
         }
     }
-    std::fs::remove_dir_all(&out).ok();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -14,11 +14,12 @@ use mpdem::resources::{BlockLog, BodyPairLog, EnergyLog, Probes, StageEndReason,
 use mpdem::scene::StageEnd;
 use std::path::PathBuf;
 
-/// A fresh file path for one test's checkpoint.
-fn checkpoint_file(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("mpdem-checkpoint-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temporary folder");
-    dir.join(format!("{tag}.bin"))
+/// A fresh file path for one test's checkpoint, in a temporary folder
+/// that goes when the folder is dropped.
+fn checkpoint_file(tag: &str) -> (common::TempFolder, PathBuf) {
+    let folder = common::TempFolder::new("checkpoint");
+    let file = folder.join(format!("{tag}.bin"));
+    (folder, file)
 }
 
 fn build(scene: &Scene) -> Simulation {
@@ -108,7 +109,7 @@ fn assert_same_run(resumed: &mut Simulation, straight: &mut Simulation) {
 /// Runs `scene` to `checkpoint_at`, writes a checkpoint, resumes it in a
 /// new simulation and compares both at step `end`.
 fn resumes_bit_identically(tag: &str, scene: &Scene, checkpoint_at: u64, end: u64) {
-    let file = checkpoint_file(tag);
+    let (_folder, file) = checkpoint_file(tag);
     let mut straight = build(scene);
     step_to(&mut straight, checkpoint_at);
     straight.write_checkpoint(&file).expect("checkpoint");
@@ -165,7 +166,7 @@ fn tip_scenes(first_end: Real, later_end: Real) -> (Scene, Scene) {
 /// `first` run to its end and checkpointed (as `tag`), then resumed as
 /// `later`, not yet stepped; and the first run.
 fn run_and_resume(tag: &str, first: &Scene, later: &Scene) -> (Simulation, Simulation) {
-    let file = checkpoint_file(tag);
+    let (_folder, file) = checkpoint_file(tag);
     let mut run = build(first);
     run.run().expect("run");
     run.write_checkpoint(&file).expect("checkpoint");
@@ -204,7 +205,7 @@ fn a_kinetic_energy_stage_resumes_counting_its_dynamic_blocks() {
         mpdem::scene::StageSpec::new("wait", StageEnd::Duration(0.01)),
         drop,
     ];
-    let file = checkpoint_file("drop");
+    let (_folder, file) = checkpoint_file("drop");
     let mut straight = build(&scene);
     step_into_stage(&mut straight, 1, 500);
     straight.write_checkpoint(&file).expect("checkpoint");
@@ -267,7 +268,8 @@ fn reduced_pile() -> Scene {
 #[test]
 fn stages_resume_mid_stage_with_their_loads_and_blocks() {
     let scene = reduced_pile();
-    let files = ["geostatic", "driven", "pulled"].map(|t| checkpoint_file(&format!("pile-{t}")));
+    let folder = common::TempFolder::new("checkpoint");
+    let files = ["geostatic", "driven", "pulled"].map(|t| folder.join(format!("pile-{t}.bin")));
     let mut straight = build(&scene);
     // In the geostatic stage (its kinetic energy peak so far matters),
     // while the pile is driven (surcharge, the pile's set velocity), and
@@ -303,7 +305,7 @@ fn a_stress_change_stage_resumes_with_its_peak_change() {
     straight.run().expect("run");
     let record = straight.world().resource::<StageLog>().records[0].clone();
     assert_eq!(record.reason, StageEndReason::Condition);
-    let file = checkpoint_file("stress-change");
+    let (_folder, file) = checkpoint_file("stress-change");
     let mut first = build(&scene);
     step_to(&mut first, record.steps - 1);
     first.write_checkpoint(&file).expect("checkpoint");
@@ -322,7 +324,7 @@ fn a_stage_cut_short_by_the_end_time_goes_on_when_the_end_grows() {
     short.output.probe_interval = Some(0.01);
     let mut long = short.clone();
     long.time.end = 0.4;
-    let file = checkpoint_file("pile-cut-short");
+    let (_folder, file) = checkpoint_file("pile-cut-short");
     let mut first = build(&short);
     first.run().expect("run");
     let log = first.world().resource::<StageLog>();
@@ -374,7 +376,7 @@ fn a_block_a_stage_added_is_spawned_again_on_resuming() {
     let pile = scene.blocks.iter_mut().find(|b| b.name == "pile").unwrap();
     pile.present = false;
     scene.stages[2].add_blocks = vec!["pile".into()];
-    let file = checkpoint_file("pile-added");
+    let (_folder, file) = checkpoint_file("pile-added");
     let mut straight = build(&scene);
     let at = step_into_stage(&mut straight, 2, 30);
     straight.write_checkpoint(&file).expect("checkpoint");
@@ -387,7 +389,7 @@ fn a_block_a_stage_added_is_spawned_again_on_resuming() {
 #[test]
 fn a_checkpoint_of_another_scene_or_no_checkpoint_is_refused() {
     let scene = common::load_scene("wave_1d.ron");
-    let file = checkpoint_file("wave");
+    let (_folder, file) = checkpoint_file("wave");
     let mut sim = build(&scene);
     step_to(&mut sim, 10);
     sim.write_checkpoint(&file).expect("checkpoint");
@@ -414,7 +416,7 @@ fn a_checkpoint_of_another_scene_or_no_checkpoint_is_refused() {
     assert_eq!(resume(&renamed, &file).clock().step, 10);
     // A file cut short, one that is not a checkpoint, and none at all.
     let bytes = std::fs::read(&file).expect("checkpoint");
-    let cut = checkpoint_file("cut");
+    let (_cut_folder, cut) = checkpoint_file("cut");
     std::fs::write(&cut, &bytes[..bytes.len() / 2]).expect("write");
     let error = refusal(&scene, &cut);
     assert!(
@@ -430,7 +432,7 @@ fn a_checkpoint_of_another_scene_or_no_checkpoint_is_refused() {
         error.to_string().contains("does not start as one"),
         "{error}"
     );
-    let missing = checkpoint_file("missing");
+    let (_missing_folder, missing) = checkpoint_file("missing");
     let error = refusal(&scene, &missing);
     assert!(matches!(error, CheckpointError::Io { .. }), "{error}");
     assert!(error.to_string().contains("missing.bin"), "{error}");
@@ -439,7 +441,7 @@ fn a_checkpoint_of_another_scene_or_no_checkpoint_is_refused() {
 #[test]
 fn a_checkpoint_with_a_flipped_bit_is_refused_and_left_as_it_is() {
     let scene = common::load_scene("wave_1d.ron");
-    let file = checkpoint_file("flipped");
+    let (_folder, file) = checkpoint_file("flipped");
     let mut sim = build(&scene);
     step_to(&mut sim, 10);
     sim.write_checkpoint(&file).expect("checkpoint");
@@ -452,7 +454,7 @@ fn a_checkpoint_with_a_flipped_bit_is_refused_and_left_as_it_is() {
         let bit = n % 8;
         let mut flipped = bytes.clone();
         flipped[at] ^= 1 << bit;
-        let damaged = checkpoint_file(&format!("flipped_{n}"));
+        let (_damaged_folder, damaged) = checkpoint_file(&format!("flipped_{n}"));
         std::fs::write(&damaged, &flipped).expect("write");
         match Simulation::resume(&scene, &damaged) {
             Ok(_) => panic!("byte {at}, bit {bit} flipped: resumed"),
@@ -533,7 +535,7 @@ fn a_user_resource_registered_for_checkpoints_resumes_bit_identically() {
     let mut straight = controlled(&scene, true);
     straight.run().unwrap_or_else(|e| panic!("{e}"));
 
-    let file = checkpoint_file("controller");
+    let (_folder, file) = checkpoint_file("controller");
     let (first, mut resumed) = written_and_restored(
         (controlled(&scene, true), controlled(&scene, true)),
         &scene,
@@ -552,7 +554,7 @@ fn a_user_resource_registered_for_checkpoints_resumes_bit_identically() {
 
     // Without the controller's state the resumed run differs: the test can
     // tell the two apart.
-    let unkept = checkpoint_file("controller-unkept");
+    let (_unkept_folder, unkept) = checkpoint_file("controller-unkept");
     let (_, mut fresh) = written_and_restored(
         (controlled(&scene, false), controlled(&scene, false)),
         &scene,
@@ -659,7 +661,7 @@ fn a_user_component_registered_for_checkpoints_resumes_bit_identically() {
 
     // The field is not put on the bar before restoring: the checkpoint
     // puts it there.
-    let file = checkpoint_file("tether");
+    let (_folder, file) = checkpoint_file("tether");
     let (mut first, mut resumed) = written_and_restored(
         (tethered(&scene, true, true), tethered(&scene, false, true)),
         &scene,
@@ -672,7 +674,7 @@ fn a_user_component_registered_for_checkpoints_resumes_bit_identically() {
 
     // Without it, a resumed run that starts the field afresh differs: the
     // test can tell the two apart.
-    let unkept = checkpoint_file("tether-unkept");
+    let (_unkept_folder, unkept) = checkpoint_file("tether-unkept");
     let (_, mut fresh) = written_and_restored(
         (tethered(&scene, true, false), tethered(&scene, true, false)),
         &scene,
@@ -683,7 +685,7 @@ fn a_user_component_registered_for_checkpoints_resumes_bit_identically() {
 
     // A checkpoint whose bar had no field removes one put on before
     // restoring: the resumed run is the one that was written.
-    let bare = checkpoint_file("tether-bare");
+    let (_bare_folder, bare) = checkpoint_file("tether-bare");
     let (_, mut restored) = written_and_restored(
         (tethered(&scene, false, true), tethered(&scene, true, true)),
         &scene,
@@ -753,8 +755,8 @@ fn counts(sim: &mut Simulation) -> (Option<Count>, Option<Count>) {
 fn user_components_follow_the_bodies_and_the_blocks_a_stage_removes() {
     let scene = reduced_pile();
     let mut run = counted_pile(&scene, true, true);
-    let driven = checkpoint_file("count-driven");
-    let pulled = checkpoint_file("count-pulled");
+    let (_driven_folder, driven) = checkpoint_file("count-driven");
+    let (_pulled_folder, pulled) = checkpoint_file("count-pulled");
     step_into_stage(&mut run, 2, 10);
     run.write_checkpoint(&driven).expect("checkpoint");
     let while_driven = counts(&mut run);

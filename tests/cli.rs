@@ -76,7 +76,6 @@ fn run_writes_csv_vtk_and_png_outputs() {
         6,
         "frames at 0, 0.01, ..., 0.05 s"
     );
-    std::fs::remove_dir_all(&base).ok();
 }
 
 #[test]
@@ -150,7 +149,6 @@ fn a_blow_up_stops_the_run_and_writes_no_broken_state() {
             "{file} holds a broken state"
         );
     }
-    std::fs::remove_dir_all(&base).ok();
 }
 
 /// The state hash `mpdem run` prints.
@@ -168,7 +166,7 @@ fn printed_hash(output: &std::process::Output) -> String {
 #[test]
 fn a_new_run_into_a_folder_removes_the_earlier_runs_files_and_no_others() {
     let (base, long) = common::edited_wave_scene("rerun-long", "end: 1.0", "end: 0.05");
-    let (short_base, short) = common::edited_wave_scene("rerun-short", "end: 1.0", "end: 0.02");
+    let (_short_base, short) = common::edited_wave_scene("rerun-short", "end: 1.0", "end: 0.02");
     let out = base.join("out");
     let run = |scene: &std::path::Path, extra: &[&str]| {
         let result = run_into(scene, &out, extra);
@@ -251,7 +249,7 @@ fn a_new_run_into_a_folder_removes_the_earlier_runs_files_and_no_others() {
         .open(out.join("vtk/points_00000.vtu"))
         .and_then(|f| f.set_modified(written + std::time::Duration::from_secs(60)))
         .unwrap();
-    let (later_base, later) = common::edited_wave_scene("rerun-later", "end: 1.0", "end: 0.07");
+    let (_later_base, later) = common::edited_wave_scene("rerun-later", "end: 1.0", "end: 0.07");
     let result = run_into(&later, &out, &["--resume"]);
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert!(result.status.success(), "{stderr}");
@@ -261,9 +259,6 @@ fn a_new_run_into_a_folder_removes_the_earlier_runs_files_and_no_others() {
         ),
         "{stderr}"
     );
-    std::fs::remove_dir_all(&base).ok();
-    std::fs::remove_dir_all(&short_base).ok();
-    std::fs::remove_dir_all(&later_base).ok();
 }
 
 #[test]
@@ -314,7 +309,7 @@ fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outp
     }
     // Refusals: a checkpoint past the scene's end, no checkpoint in the
     // folder, a checkpoint interval of zero.
-    let (early_base, early) = common::edited_wave_scene("resume-early", "end: 1.0", "end: 0.03");
+    let (_early_base, early) = common::edited_wave_scene("resume-early", "end: 1.0", "end: 0.03");
     let result = run(&early, &resumed, &["--resume"]);
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert!(
@@ -322,7 +317,6 @@ fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outp
             && stderr.contains("at step 550 (t = 5.500000e-2 s), past the scene's end at step 300"),
         "{stderr}"
     );
-    std::fs::remove_dir_all(&early_base).ok();
     let empty = base.join("empty");
     let result = run(&long, &empty, &["--resume"]);
     let stderr = String::from_utf8_lossy(&result.stderr);
@@ -441,5 +435,4 @@ fn ctrl_c_stops_the_run_after_its_step_and_writes_its_results_and_a_checkpoint()
     for file in ["probes.csv", "snapshot.png", "points.pvd"] {
         assert!(out.join(file).is_file(), "{file} missing");
     }
-    std::fs::remove_dir_all(&base).ok();
 }

@@ -8,7 +8,7 @@ mod common;
 /// 100 beam points), the step doubled (within both limits at this cell)
 /// with the output intervals in its whole steps, and 0.4 s after the gate
 /// opens (the first impact), in a fresh folder.
-fn reduced_scenes_folder() -> std::path::PathBuf {
+fn reduced_scenes_folder() -> common::TempFolder {
     common::edited_scenes_folder(
         "dam_break.ron",
         "dam-break",

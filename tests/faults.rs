@@ -28,7 +28,7 @@ fn run_into(scene: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
 
 /// The wave scene run for 10 s (100 000 steps, tens of seconds) into
 /// `out`, checkpointed every 0.01 s, with standard error piped.
-fn long_run(tag: &str) -> (PathBuf, PathBuf, Child) {
+fn long_run(tag: &str) -> (common::TempFolder, PathBuf, Child) {
     let (base, scene) = common::edited_wave_scene(tag, "end: 1.0", "end: 10.0");
     let out = base.join("out");
     let child = mpdem()
@@ -78,7 +78,7 @@ fn csv_rows(path: &Path) -> usize {
 #[test]
 fn sigterm_and_sighup_stop_a_run_as_ctrl_c_does() {
     for name in ["TERM", "HUP"] {
-        let (base, out, child) = long_run(&format!("signal-{name}"));
+        let (_base, out, child) = long_run(&format!("signal-{name}"));
         wait_for(|| out.join("checkpoint.bin").is_file());
         signal(&child, name);
         let result = child.wait_with_output().expect("mpdem ends");
@@ -92,14 +92,13 @@ fn sigterm_and_sighup_stop_a_run_as_ctrl_c_does() {
         for file in ["probes.csv", "energy.png", "snapshot.png", "points.pvd"] {
             assert!(out.join(file).is_file(), "SIG{name}: {file} missing");
         }
-        std::fs::remove_dir_all(&base).ok();
     }
 }
 
 #[cfg(unix)]
 #[test]
 fn a_killed_run_keeps_its_series_up_to_its_last_sample() {
-    let (base, out, mut child) = long_run("sigkill");
+    let (_base, out, mut child) = long_run("sigkill");
     // The probe interval is end / 1000 = 0.01 s: wait for a few samples.
     wait_for(|| {
         std::fs::read_to_string(out.join("energy.csv")).is_ok_and(|t| t.lines().count() > 5)
@@ -110,7 +109,6 @@ fn a_killed_run_keeps_its_series_up_to_its_last_sample() {
         let rows = csv_rows(&out.join(file));
         assert!(rows >= 5, "{file}: {rows} rows");
     }
-    std::fs::remove_dir_all(&base).ok();
 }
 
 #[test]
@@ -131,7 +129,6 @@ fn a_damaged_checkpoint_is_refused_and_nothing_is_overwritten() {
     assert!(stderr.contains("the checkpoint is damaged"), "{stderr}");
     assert_eq!(std::fs::read(&checkpoint).unwrap(), bytes);
     assert_eq!(std::fs::read(out.join("energy.csv")).unwrap(), energy);
-    std::fs::remove_dir_all(&base).ok();
 }
 
 #[test]
@@ -184,14 +181,13 @@ fn a_run_logs_its_progress_when_standard_error_is_not_a_terminal() {
             && stderr.contains("step 500/500 t = 5.0000e-2 s, elapsed"),
         "{stderr}"
     );
-    std::fs::remove_dir_all(&base).ok();
 }
 
 #[test]
 fn runaway_input_is_refused_with_its_size() {
     // 1e12 steps: refused with the count; a larger cap named in the scene
     // lets it through to the run (checked, not run).
-    let (base, scene) =
+    let (_base, scene) =
         common::edited_wave_scene("steps", "dt: 1e-4, end: 1.0", "dt: 1e-12, end: 1.0");
     let result = mpdem()
         .args(["check"])
@@ -204,7 +200,7 @@ fn runaway_input_is_refused_with_its_size() {
         stderr.contains("gives 1.000e12 steps, more than the cap of 100000000 (time.max_steps"),
         "{stderr}"
     );
-    let (allowed_base, allowed) = common::edited_wave_scene(
+    let (_allowed_base, allowed) = common::edited_wave_scene(
         "steps-allowed",
         "dt: 1e-4, end: 1.0",
         "dt: 1e-6, end: 200.0, max_steps: 300000000",
@@ -247,7 +243,7 @@ fn runaway_input_is_refused_with_its_size() {
     );
     // Every step sampled over 10^7 steps: 10^7 rows of energies and as
     // many of the probe, more than a run keeps.
-    let (rows_base, rows) = common::write_edited(
+    let (_rows_base, rows) = common::write_edited(
         "wave_1d.ron",
         "rows",
         "rows.ron",
@@ -268,9 +264,6 @@ fn runaway_input_is_refused_with_its_size() {
             && stderr.contains("more than the 10000000 a run keeps"),
         "{stderr}"
     );
-    std::fs::remove_dir_all(&rows_base).ok();
-    std::fs::remove_dir_all(&base).ok();
-    std::fs::remove_dir_all(&allowed_base).ok();
 }
 
 #[test]
@@ -290,7 +283,6 @@ fn a_restart_that_cannot_open_the_folder_keeps_the_checkpoint() {
         std::fs::read(out.join("checkpoint.bin")).unwrap(),
         checkpoint
     );
-    std::fs::remove_dir_all(&base).ok();
 }
 
 #[test]
@@ -298,13 +290,13 @@ fn a_runner_runs_once() {
     use mpdem::runner::{RunError, RunOptions, Runner};
     let mut scene = common::load_scene("wave_1d.ron");
     scene.time.end = 0.001;
-    let out = std::env::temp_dir().join(format!("mpdem-runs-once-{}", std::process::id()));
-    let mut runner = Runner::new(&scene, None, RunOptions::into_folder(&out)).expect("a runner");
+    let out = common::TempFolder::new("runs-once");
+    let mut runner =
+        Runner::new(&scene, None, RunOptions::into_folder(out.to_path_buf())).expect("a runner");
     let stop = std::sync::atomic::AtomicBool::new(false);
     assert!(runner.run(&stop, |_| {}).is_ok());
     assert!(matches!(
         runner.run(&stop, |_| {}),
         Err(RunError::RanAlready)
     ));
-    std::fs::remove_dir_all(&out).ok();
 }

@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 /// The wave scene shortened to 0.05 s (500 steps), its bar read from
 /// `points.csv` holding `csv`, in a fresh folder named after `tag`; returns
 /// the scene file.
-fn listed_wave_scene(tag: &str, csv: &str) -> PathBuf {
+fn listed_wave_scene(tag: &str, csv: &str) -> (common::TempFolder, PathBuf) {
     let (folder, scene) = common::edited_wave_scene(
         tag,
         "shape: Rectangle(min: (0.0, 0.0), max: (1.0, 0.01)),",
@@ -21,7 +21,7 @@ fn listed_wave_scene(tag: &str, csv: &str) -> PathBuf {
     let text = std::fs::read_to_string(&scene).expect("scene");
     std::fs::write(&scene, text.replacen("end: 1.0", "end: 0.05", 1)).expect("scene");
     std::fs::write(folder.join("points.csv"), csv).expect("point list");
-    scene
+    (folder, scene)
 }
 
 /// The lattice the wave scene's rectangle gives, as a point list
@@ -53,7 +53,7 @@ fn run(path: &Path) -> Simulation {
 
 #[test]
 fn the_lattice_as_a_point_list_runs_bit_identical_to_the_shape() {
-    let listed = listed_wave_scene("listed-lattice", &lattice_of_the_wave_bar(false));
+    let (_folder, listed) = listed_wave_scene("listed-lattice", &lattice_of_the_wave_bar(false));
     let mut original = common::load_scene("wave_1d.ron");
     original.time.end = 0.05;
     let mut shape = common::run_scene(&original);
@@ -67,7 +67,7 @@ fn the_lattice_as_a_point_list_runs_bit_identical_to_the_shape() {
 
 #[test]
 fn listed_volumes_set_each_points_mass_and_domain() {
-    let listed = listed_wave_scene("listed-volumes", &lattice_of_the_wave_bar(true));
+    let (_folder, listed) = listed_wave_scene("listed-volumes", &lattice_of_the_wave_bar(true));
     let scene = Scene::load(&listed).unwrap_or_else(|e| panic!("{e}"));
     let Shape::Points { points, .. } = &scene.bodies[0].shape else {
         panic!("not a point list")
@@ -241,16 +241,13 @@ fn a_point_lists_line_numbers_are_not_part_of_the_scene() {
         unreachable!()
     };
     points.iter_mut().for_each(|p| p.line += 1);
-    let path = std::env::temp_dir().join(format!(
-        "mpdem-point-list-lines-{}.ckpt",
-        std::process::id()
-    ));
+    let folder = common::TempFolder::new("point-list-lines");
+    let path = folder.join("checkpoint.bin");
     let mut sim = Simulation::from_scene(&scene).unwrap_or_else(|e| panic!("{e}"));
     sim.step().unwrap_or_else(|e| panic!("{e}"));
     sim.write_checkpoint(&path)
         .unwrap_or_else(|e| panic!("{e}"));
     let resumed = Simulation::resume(&moved, &path);
-    std::fs::remove_file(&path).ok();
     let mut resumed = resumed.unwrap_or_else(|e| panic!("the moved scene's resume: {e}"));
     assert_eq!(resumed.state_hash(), sim.state_hash());
 }
@@ -301,7 +298,7 @@ fn a_listed_body_refuses_oversized_or_outlying_domains() {
 
 #[test]
 fn a_bad_point_list_is_refused_with_the_file_and_line() {
-    let scene = listed_wave_scene("listed-bad", "x,y\n0.1,0.005\n0.2,oops\n");
+    let (_folder, scene) = listed_wave_scene("listed-bad", "x,y\n0.1,0.005\n0.2,oops\n");
     let message = Scene::load(&scene)
         .expect_err("bad list accepted")
         .to_string();
@@ -321,7 +318,7 @@ fn a_bad_point_list_is_refused_with_the_file_and_line() {
         "{message}"
     );
 
-    let missing = listed_wave_scene("listed-missing", "x,y\n0.1,0.005\n");
+    let (_folder, missing) = listed_wave_scene("listed-missing", "x,y\n0.1,0.005\n");
     std::fs::remove_file(missing.with_file_name("points.csv")).unwrap();
     let message = Scene::load(&missing)
         .expect_err("missing list accepted")
@@ -331,7 +328,7 @@ fn a_bad_point_list_is_refused_with_the_file_and_line() {
         "{message}"
     );
 
-    let outside = listed_wave_scene("listed-outside", "x,y\n0.1,0.005\n1.5,0.005\n");
+    let (_folder, outside) = listed_wave_scene("listed-outside", "x,y\n0.1,0.005\n1.5,0.005\n");
     let message = Scene::load(&outside)
         .expect_err("outside accepted")
         .to_string();

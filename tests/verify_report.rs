@@ -1,6 +1,8 @@
 //! `mpdem verify --report DIR` writes a Markdown page of the cases' checks
 //! and a PNG per figure: here for made-up reports, without a simulation.
 
+mod common;
+
 use mpdem::verify::report::write_report;
 use mpdem::verify::{CaseReport, Check, Curve, Figure, Measured, VerifyError};
 
@@ -59,8 +61,7 @@ fn png_size(path: &std::path::Path) -> (u32, u32) {
 
 #[test]
 fn report_has_the_summary_the_checks_the_failure_and_the_figures() {
-    let dir = std::env::temp_dir().join(format!("mpdem-verify-report-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let dir = common::TempFolder::new("verify-report");
     let reports = reports();
     let page = write_report(&dir, "mpdem verify --report docs/", &reports).expect("the report");
     assert_eq!(page, dir.join("verification.md"));

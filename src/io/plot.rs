@@ -684,12 +684,13 @@ fn tick_label(v: Real, span: Real) -> String {
 mod tests {
     use super::*;
     use glam::DVec2;
-    use std::path::PathBuf;
 
-    fn test_dir(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join("mpdem_io_plot_tests").join(name);
-        std::fs::create_dir_all(&dir).unwrap();
-        dir
+    /// A fresh folder for one test, removed when dropped.
+    fn test_dir(name: &str) -> tempfile::TempDir {
+        tempfile::Builder::new()
+            .prefix(&format!("mpdem-io-plot-{name}-"))
+            .tempdir()
+            .unwrap()
     }
 
     /// Returns (width, height) from the IHDR chunk, after checking the PNG signature.
@@ -722,7 +723,8 @@ mod tests {
                 points: &measured,
             },
         ];
-        let path = test_dir("series").join("energy.png");
+        let dir = test_dir("series");
+        let path = dir.path().join("energy.png");
         plot_series(&path, "Kinetic energy", "time (s)", "energy (J)", &series).unwrap();
         assert_eq!(png_size(&path), (900, 600));
     }
@@ -745,7 +747,8 @@ mod tests {
                 dashed: true,
             },
         ];
-        let path = test_dir("lines").join("lines.png");
+        let dir = test_dir("lines");
+        let path = dir.path().join("lines.png");
         plot_lines(&path, (800, 500), "Lines", "x (m)", "y (m)", &lines).unwrap();
         assert_eq!(png_size(&path), (800, 500));
         assert_eq!(wrap("a name long enough", 8), ["a name", "long", "enough"]);
@@ -763,12 +766,12 @@ mod tests {
             ("nan", &nan),
             ("empty", &[]),
         ] {
-            let path = dir.join(format!("{name}.png"));
+            let path = dir.path().join(format!("{name}.png"));
             let series = [Series { name, points }];
             plot_series(&path, name, "x", "y", &series).unwrap();
             assert_eq!(png_size(&path), (900, 600));
         }
-        plot_series(&dir.join("none.png"), "no series", "x", "y", &[]).unwrap();
+        plot_series(&dir.path().join("none.png"), "no series", "x", "y", &[]).unwrap();
     }
 
     #[test]
@@ -794,7 +797,7 @@ mod tests {
             DVec2::new(0.8, 1.3),
         ];
         let view = (DVec2::new(0.0, 0.0), DVec2::new(2.0, 1.4));
-        let path = dir.join("stress.png");
+        let path = dir.path().join("stress.png");
         plot_points(
             &path,
             "Vertical stress, t = 0.1 s",
@@ -816,7 +819,7 @@ mod tests {
         // Very tall and very flat views clamp the height; constant and NaN values do not panic.
         let tall = (DVec2::ZERO, DVec2::new(0.1, 10.0));
         plot_points(
-            &dir.join("tall.png"),
+            &dir.path().join("tall.png"),
             "tall",
             "v",
             &positions,
@@ -826,10 +829,13 @@ mod tests {
             &[],
         )
         .unwrap();
-        assert_eq!(png_size(&dir.join("tall.png")), (SNAPSHOT_WIDTH, 2000));
+        assert_eq!(
+            png_size(&dir.path().join("tall.png")),
+            (SNAPSHOT_WIDTH, 2000)
+        );
         let flat = (DVec2::ZERO, DVec2::new(100.0, 0.1));
         plot_points(
-            &dir.join("flat.png"),
+            &dir.path().join("flat.png"),
             "flat",
             "v",
             &positions,
@@ -839,7 +845,10 @@ mod tests {
             &[],
         )
         .unwrap();
-        assert_eq!(png_size(&dir.join("flat.png")), (SNAPSHOT_WIDTH, 300));
+        assert_eq!(
+            png_size(&dir.path().join("flat.png")),
+            (SNAPSHOT_WIDTH, 300)
+        );
     }
 
     #[test]
@@ -850,7 +859,7 @@ mod tests {
         let invalid = std::io::ErrorKind::InvalidInput;
         assert_eq!(
             kind(plot_points(
-                &dir.join("a.jpg"),
+                &dir.path().join("a.jpg"),
                 "",
                 "",
                 &[],
@@ -863,7 +872,7 @@ mod tests {
         );
         assert_eq!(
             kind(plot_points(
-                &dir.join("b.png"),
+                &dir.path().join("b.png"),
                 "",
                 "",
                 &[DVec2::ZERO],
@@ -877,7 +886,7 @@ mod tests {
         let flat_view = (DVec2::ZERO, DVec2::new(1.0, 0.0));
         assert_eq!(
             kind(plot_points(
-                &dir.join("c.png"),
+                &dir.path().join("c.png"),
                 "",
                 "",
                 &[],
@@ -889,7 +898,7 @@ mod tests {
             invalid
         );
         assert_eq!(
-            kind(plot_series(&dir.join("d.svg"), "", "", "", &[])),
+            kind(plot_series(&dir.path().join("d.svg"), "", "", "", &[])),
             invalid
         );
     }

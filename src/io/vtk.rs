@@ -257,12 +257,13 @@ fn unescape_xml(text: &str) -> String {
 mod tests {
     use super::*;
     use glam::DVec2;
-    use std::path::PathBuf;
 
-    fn test_dir(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join("mpdem_io_vtk_tests").join(name);
-        std::fs::create_dir_all(&dir).unwrap();
-        dir
+    /// A fresh folder for one test, removed when dropped.
+    fn test_dir(name: &str) -> tempfile::TempDir {
+        tempfile::Builder::new()
+            .prefix(&format!("mpdem-io-vtk-{name}-"))
+            .tempdir()
+            .unwrap()
     }
 
     /// Reads a `.vtu` back with vtkio and returns its single inline piece.
@@ -307,7 +308,8 @@ mod tests {
             stresses: &stresses,
             body: &body,
         };
-        let path = test_dir("frame").join("points_0000.vtu");
+        let dir = test_dir("frame");
+        let path = dir.path().join("points_0000.vtu");
         write_point_frame(&path, &frame).unwrap();
 
         let text = std::fs::read_to_string(&path).unwrap();
@@ -347,7 +349,8 @@ mod tests {
             stresses: &[[0.0; 4]],
             body: &[0, 0],
         };
-        let path = test_dir("mismatch").join("bad.vtu");
+        let dir = test_dir("mismatch");
+        let path = dir.path().join("bad.vtu");
         let err = write_point_frame(&path, &frame).unwrap_err();
         assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
     }
@@ -362,10 +365,10 @@ mod tests {
             stresses: &[],
             body: &[],
         };
-        write_point_frame(&dir.join("points.vtu"), &frame).unwrap();
-        write_outlines(&dir.join("outlines.vtu"), &[], &[]).unwrap();
+        write_point_frame(&dir.path().join("points.vtu"), &frame).unwrap();
+        write_outlines(&dir.path().join("outlines.vtu"), &[], &[]).unwrap();
         for name in ["points.vtu", "outlines.vtu"] {
-            let path = dir.join(name);
+            let path = dir.path().join(name);
             let text = std::fs::read_to_string(&path).unwrap();
             assert!(text.contains(r#"<Piece NumberOfPoints="0" NumberOfCells="0">"#));
             assert_eq!(read_piece(&path).num_points(), 0);
@@ -385,7 +388,8 @@ mod tests {
             DVec2::new(3.0, 0.0),
             DVec2::new(2.5, 1.0),
         ];
-        let path = test_dir("outlines").join("blocks_0000.vtu");
+        let dir = test_dir("outlines");
+        let path = dir.path().join("blocks_0000.vtu");
         write_outlines(&path, &[square, Vec::new(), triangle], &[3, 4, 5]).unwrap();
 
         let piece = read_piece(&path);
@@ -403,7 +407,8 @@ mod tests {
 
     #[test]
     fn collection_lists_times_and_files() {
-        let path = test_dir("collection").join("run.pvd");
+        let dir = test_dir("collection");
+        let path = dir.path().join("run.pvd");
         let entries = vec![
             (0.0, "frames/points_0000.vtu".to_string()),
             (0.1 + 0.2, "frames/points_0001.vtu".to_string()),

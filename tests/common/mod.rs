@@ -2,7 +2,37 @@
 #![allow(dead_code)] // each test binary uses a different subset
 
 use mpdem::prelude::*;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+
+/// A fresh temporary folder, removed with everything in it when dropped,
+/// so a test leaves nothing behind whether it passes or fails. It derefs
+/// to its path.
+pub struct TempFolder(tempfile::TempDir);
+
+impl TempFolder {
+    /// A new empty folder whose name starts with `mpdem-{tag}-`.
+    pub fn new(tag: &str) -> Self {
+        Self(
+            tempfile::Builder::new()
+                .prefix(&format!("mpdem-{tag}-"))
+                .tempdir()
+                .expect("temporary folder"),
+        )
+    }
+}
+
+impl std::ops::Deref for TempFolder {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        self.0.path()
+    }
+}
+
+impl AsRef<Path> for TempFolder {
+    fn as_ref(&self) -> &Path {
+        self.0.path()
+    }
+}
 
 /// Path of a file in `scenes/`.
 pub fn scene_path(file: &str) -> PathBuf {
@@ -83,9 +113,8 @@ pub fn write_edited(
     tag: &str,
     name: &str,
     edits: &[(&str, &str)],
-) -> (PathBuf, PathBuf) {
-    let base = std::env::temp_dir().join(format!("mpdem-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&base).expect("temporary folder");
+) -> (TempFolder, PathBuf) {
+    let base = TempFolder::new(tag);
     let mut text = std::fs::read_to_string(scene_path(file)).expect("scene");
     for (from, to) in edits {
         assert!(text.contains(from), "'{from}' not in {file}");
@@ -98,13 +127,13 @@ pub fn write_edited(
 
 /// Writes the wave scene with `from` replaced by `to` into a fresh temporary
 /// folder named after `tag`; returns the folder and the scene file.
-pub fn edited_wave_scene(tag: &str, from: &str, to: &str) -> (PathBuf, PathBuf) {
+pub fn edited_wave_scene(tag: &str, from: &str, to: &str) -> (TempFolder, PathBuf) {
     write_edited("wave_1d.ron", tag, &format!("{tag}.ron"), &[(from, to)])
 }
 
 /// A fresh temporary folder named after `tag` holding the scene `file` of
 /// `scenes/`, under its own name, with `edits` made (e.g. a scenes folder
 /// for `mpdem verify`).
-pub fn edited_scenes_folder(file: &str, tag: &str, edits: &[(&str, &str)]) -> PathBuf {
+pub fn edited_scenes_folder(file: &str, tag: &str, edits: &[(&str, &str)]) -> TempFolder {
     write_edited(file, tag, file, edits).0
 }
