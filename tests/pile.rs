@@ -46,7 +46,8 @@ fn reduced_pile_penetrates_stably_through_its_stages() {
     );
     // The cone pushes the soil (positive resistance) and the resistance
     // grows with depth, as the confining stress does. The full scene's
-    // plateau target (4–6 MPa) is checked by `full_pile_reaches_the_published_plateau`.
+    // cone resistance (4–6 MPa over z/R 4–8, axisymmetric) is checked by
+    // `full_axisymmetric_pile_reaches_the_published_cone_resistance`.
     assert!(q1 > 0.0 && q2 > q1, "q_c {q1} then {q2}");
 }
 
