@@ -140,6 +140,12 @@ pub(crate) struct StencilGrid {
 pub(crate) struct Stencil {
     /// Grid index of the stencil's lower-left node.
     pub base: [u32; 2],
+    /// Per direction, the range `reach[d][0]..reach[d][1]` of the stencil's
+    /// nodes whose weight or derivative is not zero: a uGIMP point whose
+    /// support ends on or short of a node (half the time at 2 × 2 points per
+    /// cell) reaches two nodes in that direction, not three. The transfers
+    /// visit only these; the others would add exact zeros.
+    pub reach: [[u8; 2]; 2],
     /// Weights along x for nodes `base[0]` to `base[0] + 2`.
     pub wx: [Real; 3],
     /// Weights along y for nodes `base[1]` to `base[1] + 2`.
@@ -167,6 +173,7 @@ impl Stencil {
         let (gx, gy) = (gx.map(|g| g * inv_h), gy.map(|g| g * inv_h));
         Some(Self {
             base: [bx, by],
+            reach: [reach(&wx, &gx), reach(&wy, &gy)],
             wx,
             wy,
             gx,
@@ -193,25 +200,60 @@ impl Stencil {
         cell * (DVec2::new(node[0] as Real, node[1] as Real) - mean)
     }
 
-    /// Folds `f(acc, value, S_ip, G_ip)` over the nine stencil nodes of a
-    /// row-major field `values` whose first value is grid node `origin`,
-    /// with `row_len` nodes per row.
+    /// Folds `f(acc, value, S_ip, G_ip)` over the stencil nodes the point
+    /// reaches (`reach`) of a row-major field `values` whose first value is
+    /// grid node `origin`, with `row_len` nodes per row.
     #[inline(always)]
     pub fn gather<T, A>(
         &self,
         values: &[T],
         origin: [u32; 2],
         row_len: usize,
+        acc: A,
+        f: impl FnMut(A, &T, Real, DVec2) -> A,
+    ) -> A {
+        let at = self.place(origin, row_len);
+        let start = self.reach.map(|[first, _]| usize::from(first));
+        match self.reached() {
+            [2, 3] => self.gather_block::<2, 3, T, A>(values, at, start, row_len, acc, f),
+            [3, 2] => self.gather_block::<3, 2, T, A>(values, at, start, row_len, acc, f),
+            [2, 2] => self.gather_block::<2, 2, T, A>(values, at, start, row_len, acc, f),
+            _ => self.gather_block::<3, 3, T, A>(values, at, [0, 0], row_len, acc, f),
+        }
+    }
+
+    /// The number of nodes the point reaches along x and along y.
+    #[inline(always)]
+    fn reached(&self) -> [u8; 2] {
+        self.reach.map(|[first, end]| end - first)
+    }
+
+    /// The place of the stencil's node (0, 0) in a row-major rectangle of
+    /// nodes whose lower-left node is grid node `origin`.
+    #[inline(always)]
+    fn place(&self, origin: [u32; 2], row_len: usize) -> usize {
+        (self.base[0] - origin[0]) as usize + (self.base[1] - origin[1]) as usize * row_len
+    }
+
+    /// [`Self::gather`] over the NX × NY nodes from stencil node `start`,
+    /// `at` the place of the stencil's node (0, 0) in `values`; fixed trip
+    /// counts let the loops unroll. Any stencil may take the whole 3 × 3.
+    #[inline(always)]
+    fn gather_block<const NX: usize, const NY: usize, T, A>(
+        &self,
+        values: &[T],
+        at: usize,
+        [x0, y0]: [usize; 2],
+        row_len: usize,
         mut acc: A,
         mut f: impl FnMut(A, &T, Real, DVec2) -> A,
     ) -> A {
-        let column = (self.base[0] - origin[0]) as usize;
-        for b in 0..3 {
-            let first = ((self.base[1] - origin[1]) as usize + b) * row_len + column;
-            let row = values[first..first + 3]
-                .iter()
-                .zip(self.wx.iter().zip(&self.gx));
-            for (value, (wx, gx)) in row {
+        for j in 0..NY {
+            let b = y0 + j;
+            let first = at + b * row_len + x0;
+            let row: &[T; NX] = values[first..first + NX].try_into().unwrap();
+            for (i, value) in row.iter().enumerate() {
+                let (wx, gx) = (self.wx[x0 + i], self.gx[x0 + i]);
                 acc = f(
                     acc,
                     value,
@@ -231,26 +273,48 @@ impl Stencil {
         })
     }
 
-    /// Calls `f(value, S_ip, G_ip, [a, b])` on the nine stencil nodes of a
-    /// row-major rectangle `values` of nodes whose lower-left node is grid
-    /// node `origin` and whose rows are `row_len` long; (a, b) is the node's
-    /// place in the stencil (grid node `base` + (a, b)), for quantities that
-    /// depend on where the node is (see [`Self::offset_from_mean`]).
+    /// Calls `f(value, S_ip, G_ip, [a, b])` on the stencil nodes the point
+    /// reaches (`reach`) of a row-major rectangle `values` of nodes whose
+    /// lower-left node is grid node `origin` and whose rows are `row_len`
+    /// long; (a, b) is the node's place in the stencil (grid node `base` +
+    /// (a, b)), for quantities that depend on where the node is (see
+    /// [`Self::offset_from_mean`]).
     #[inline(always)]
     pub fn scatter<T>(
         &self,
         values: &mut [T],
         origin: [u32; 2],
         row_len: usize,
+        f: impl FnMut(&mut T, Real, DVec2, [usize; 2]),
+    ) {
+        let at = self.place(origin, row_len);
+        let start = self.reach.map(|[first, _]| usize::from(first));
+        match self.reached() {
+            [2, 3] => self.scatter_block::<2, 3, T>(values, at, start, row_len, f),
+            [3, 2] => self.scatter_block::<3, 2, T>(values, at, start, row_len, f),
+            [2, 2] => self.scatter_block::<2, 2, T>(values, at, start, row_len, f),
+            _ => self.scatter_block::<3, 3, T>(values, at, [0, 0], row_len, f),
+        }
+    }
+
+    /// [`Self::scatter`] over the NX × NY nodes reached (as
+    /// [`Self::gather_block`]).
+    #[inline(always)]
+    fn scatter_block<const NX: usize, const NY: usize, T>(
+        &self,
+        values: &mut [T],
+        at: usize,
+        [x0, y0]: [usize; 2],
+        row_len: usize,
         mut f: impl FnMut(&mut T, Real, DVec2, [usize; 2]),
     ) {
-        let column = (self.base[0] - origin[0]) as usize;
-        for b in 0..3 {
-            let first = ((self.base[1] - origin[1]) as usize + b) * row_len + column;
-            let row = values[first..first + 3]
-                .iter_mut()
-                .zip(self.wx.iter().zip(&self.gx));
-            for (a, (value, (wx, gx))) in row.enumerate() {
+        for j in 0..NY {
+            let b = y0 + j;
+            let first = at + b * row_len + x0;
+            let row: &mut [T; NX] = (&mut values[first..first + NX]).try_into().unwrap();
+            for (i, value) in row.iter_mut().enumerate() {
+                let a = x0 + i;
+                let (wx, gx) = (self.wx[a], self.gx[a]);
                 f(
                     value,
                     wx * self.wy[b],
@@ -260,6 +324,14 @@ impl Stencil {
             }
         }
     }
+}
+
+/// The range of an axis's three nodes whose weight or derivative is not
+/// zero (a kernel's support is one interval, so they are contiguous).
+#[inline(always)]
+fn reach(weights: &[Real; 3], derivatives: &[Real; 3]) -> [u8; 2] {
+    let zero = |k: usize| weights[k] == 0.0 && derivatives[k] == 0.0;
+    [u8::from(zero(0)), 3 - u8::from(zero(2))]
 }
 
 /// Largest weight a node beyond an open grid edge may receive and still be
@@ -382,6 +454,38 @@ mod tests {
 
     // Tolerance: sums of nine O(1) terms in f64, so a few ulps of 1.
     const TOL: Real = 1e-12;
+
+    /// The transfers visit only the nodes a stencil reaches: every node left
+    /// out has neither weight nor derivative, for every kernel and place;
+    /// a uGIMP point a quarter cell wide each side reaches two nodes per
+    /// direction in the middle half of its cell and three elsewhere.
+    #[test]
+    fn the_nodes_a_stencil_leaves_out_have_no_weight() {
+        for kind in KINDS {
+            for half in [H / 4.0, H / 2.0] {
+                for p in positions() {
+                    let st = kind.stencil(p, DVec2::splat(half), &OPEN).unwrap();
+                    for (d, (w, g)) in [(st.wx, st.gx), (st.wy, st.gy)].into_iter().enumerate() {
+                        let [first, end] = st.reach[d].map(usize::from);
+                        for k in (0..first).chain(end..3) {
+                            assert!(w[k] == 0.0 && g[k] == 0.0, "{kind:?} at {p}: {d} {k}");
+                        }
+                    }
+                }
+            }
+        }
+        let reached = |f: Real| {
+            let p = DVec2::splat((10.0 + f) * H);
+            let st = ShapeFunction::UGimp
+                .stencil(p, DVec2::splat(H / 4.0), &OPEN)
+                .unwrap();
+            st.reached()
+        };
+        assert_eq!(reached(0.3), [2, 2]);
+        assert_eq!(reached(0.5), [2, 2]);
+        assert_eq!(reached(0.1), [3, 3]);
+        assert_eq!(reached(0.9), [3, 3]);
+    }
 
     #[test]
     fn partition_of_unity_and_zero_gradient_sum() {
