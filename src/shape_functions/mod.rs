@@ -140,12 +140,16 @@ pub(crate) struct StencilGrid {
 pub(crate) struct Stencil {
     /// Grid index of the stencil's lower-left node.
     pub base: [u32; 2],
-    /// Per direction, the range `reach[d][0]..reach[d][1]` of the stencil's
-    /// nodes whose weight or derivative is not zero: a uGIMP point whose
-    /// support ends on or short of a node (half the time at 2 × 2 points per
-    /// cell) reaches two nodes in that direction, not three. The transfers
-    /// visit only these; the others would add exact zeros.
-    pub reach: [[u8; 2]; 2],
+    /// Per direction, the first of the stencil's nodes whose weight or
+    /// derivative is not zero (0 or 1), and with `reached` the nodes from
+    /// it that have one: a uGIMP point whose support ends on or short of a
+    /// node (half the time at 2 × 2 points per cell) reaches two nodes in
+    /// that direction, not three. The transfers visit only these; the
+    /// others would add exact zeros.
+    pub first_reached: [u8; 2],
+    /// Per direction, how many nodes from `first_reached` the point reaches
+    /// (1 to 3).
+    pub reached: [u8; 2],
     /// Weights along x for nodes `base[0]` to `base[0] + 2`.
     pub wx: [Real; 3],
     /// Weights along y for nodes `base[1]` to `base[1] + 2`.
@@ -173,7 +177,8 @@ impl Stencil {
         let (gx, gy) = (gx.map(|g| g * inv_h), gy.map(|g| g * inv_h));
         Some(Self {
             base: [bx, by],
-            reach: [reach(&wx, &gx), reach(&wy, &gy)],
+            first_reached: [first_reached(&wx, &gx), first_reached(&wy, &gy)],
+            reached: [reached(&wx, &gx), reached(&wy, &gy)],
             wx,
             wy,
             gx,
@@ -201,7 +206,7 @@ impl Stencil {
     }
 
     /// Folds `f(acc, value, S_ip, G_ip)` over the stencil nodes the point
-    /// reaches (`reach`) of a row-major field `values` whose first value is
+    /// reaches (`reached`) of a row-major field `values` whose first value is
     /// grid node `origin`, with `row_len` nodes per row.
     #[inline(always)]
     pub fn gather<T, A>(
@@ -213,19 +218,13 @@ impl Stencil {
         f: impl FnMut(A, &T, Real, DVec2) -> A,
     ) -> A {
         let at = self.place(origin, row_len);
-        let start = self.reach.map(|[first, _]| usize::from(first));
-        match self.reached() {
+        let start = self.first_reached.map(usize::from);
+        match self.reached {
             [2, 3] => self.gather_block::<2, 3, T, A>(values, at, start, row_len, acc, f),
             [3, 2] => self.gather_block::<3, 2, T, A>(values, at, start, row_len, acc, f),
             [2, 2] => self.gather_block::<2, 2, T, A>(values, at, start, row_len, acc, f),
             _ => self.gather_block::<3, 3, T, A>(values, at, [0, 0], row_len, acc, f),
         }
-    }
-
-    /// The number of nodes the point reaches along x and along y.
-    #[inline(always)]
-    fn reached(&self) -> [u8; 2] {
-        self.reach.map(|[first, end]| end - first)
     }
 
     /// The place of the stencil's node (0, 0) in a row-major rectangle of
@@ -274,7 +273,7 @@ impl Stencil {
     }
 
     /// Calls `f(value, S_ip, G_ip, [a, b])` on the stencil nodes the point
-    /// reaches (`reach`) of a row-major rectangle `values` of nodes whose
+    /// reaches (`reached`) of a row-major rectangle `values` of nodes whose
     /// lower-left node is grid node `origin` and whose rows are `row_len`
     /// long; (a, b) is the node's place in the stencil (grid node `base` +
     /// (a, b)), for quantities that depend on where the node is (see
@@ -288,8 +287,8 @@ impl Stencil {
         f: impl FnMut(&mut T, Real, DVec2, [usize; 2]),
     ) {
         let at = self.place(origin, row_len);
-        let start = self.reach.map(|[first, _]| usize::from(first));
-        match self.reached() {
+        let start = self.first_reached.map(usize::from);
+        match self.reached {
             [2, 3] => self.scatter_block::<2, 3, T>(values, at, start, row_len, f),
             [3, 2] => self.scatter_block::<3, 2, T>(values, at, start, row_len, f),
             [2, 2] => self.scatter_block::<2, 2, T>(values, at, start, row_len, f),
@@ -326,12 +325,19 @@ impl Stencil {
     }
 }
 
-/// The range of an axis's three nodes whose weight or derivative is not
-/// zero (a kernel's support is one interval, so they are contiguous).
+/// Of an axis's three nodes, the first whose weight or derivative is not
+/// zero (a kernel's support is one interval, so those nodes are contiguous).
 #[inline(always)]
-fn reach(weights: &[Real; 3], derivatives: &[Real; 3]) -> [u8; 2] {
-    let zero = |k: usize| weights[k] == 0.0 && derivatives[k] == 0.0;
-    [u8::from(zero(0)), 3 - u8::from(zero(2))]
+fn first_reached(weights: &[Real; 3], derivatives: &[Real; 3]) -> u8 {
+    u8::from((weights[0] == 0.0) & (derivatives[0] == 0.0))
+}
+
+/// How many of an axis's three nodes, from [`first_reached`]'s, have a
+/// weight or a derivative.
+#[inline(always)]
+fn reached(weights: &[Real; 3], derivatives: &[Real; 3]) -> u8 {
+    let zero = |k: usize| u8::from((weights[k] == 0.0) & (derivatives[k] == 0.0));
+    3 - zero(0) - zero(2)
 }
 
 /// Largest weight a node beyond an open grid edge may receive and still be
@@ -466,7 +472,8 @@ mod tests {
                 for p in positions() {
                     let st = kind.stencil(p, DVec2::splat(half), &OPEN).unwrap();
                     for (d, (w, g)) in [(st.wx, st.gx), (st.wy, st.gy)].into_iter().enumerate() {
-                        let [first, end] = st.reach[d].map(usize::from);
+                        let first = usize::from(st.first_reached[d]);
+                        let end = first + usize::from(st.reached[d]);
                         for k in (0..first).chain(end..3) {
                             assert!(w[k] == 0.0 && g[k] == 0.0, "{kind:?} at {p}: {d} {k}");
                         }
@@ -479,7 +486,7 @@ mod tests {
             let st = ShapeFunction::UGimp
                 .stencil(p, DVec2::splat(H / 4.0), &OPEN)
                 .unwrap();
-            st.reached()
+            st.reached
         };
         assert_eq!(reached(0.3), [2, 2]);
         assert_eq!(reached(0.5), [2, 2]);
