@@ -175,10 +175,11 @@ impl Stencil {
         let (bx, wx, gx) = axis(kernel, s.x, half.x, grid.nodes[0], grid.walls[0])?;
         let (by, wy, gy) = axis(kernel, s.y, half.y, grid.nodes[1], grid.walls[1])?;
         let (gx, gy) = (gx.map(|g| g * inv_h), gy.map(|g| g * inv_h));
+        let (x_reach, y_reach) = (reach(&wx, &gx), reach(&wy, &gy));
         Some(Self {
             base: [bx, by],
-            first_reached: [first_reached(&wx, &gx), first_reached(&wy, &gy)],
-            reached: [reached(&wx, &gx), reached(&wy, &gy)],
+            first_reached: [x_reach.0, y_reach.0],
+            reached: [x_reach.1, y_reach.1],
             wx,
             wy,
             gx,
@@ -326,18 +327,13 @@ impl Stencil {
 }
 
 /// Of an axis's three nodes, the first whose weight or derivative is not
-/// zero (a kernel's support is one interval, so those nodes are contiguous).
+/// zero and how many from it have one (a kernel's support is one interval,
+/// so those nodes are contiguous).
 #[inline(always)]
-fn first_reached(weights: &[Real; 3], derivatives: &[Real; 3]) -> u8 {
-    u8::from((weights[0] == 0.0) & (derivatives[0] == 0.0))
-}
-
-/// How many of an axis's three nodes, from [`first_reached`]'s, have a
-/// weight or a derivative.
-#[inline(always)]
-fn reached(weights: &[Real; 3], derivatives: &[Real; 3]) -> u8 {
+fn reach(weights: &[Real; 3], derivatives: &[Real; 3]) -> (u8, u8) {
     let zero = |k: usize| u8::from((weights[k] == 0.0) & (derivatives[k] == 0.0));
-    3 - zero(0) - zero(2)
+    let first = zero(0);
+    (first, 3 - first - zero(2))
 }
 
 /// Largest weight a node beyond an open grid edge may receive and still be
