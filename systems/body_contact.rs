@@ -52,6 +52,8 @@ pub fn compute_body_contacts(
         current,
         previous,
         cell_bodies,
+        near_bodies,
+        marked_cells,
         point_cells,
         candidates,
         chunks,
@@ -73,19 +75,21 @@ pub fn compute_body_contacts(
     let points = &points[..used];
 
     // Each point's cell (in parallel), then every cell marked with the
-    // bodies whose points lie in it. Only last step's marks are cleared, so
-    // the cost follows the points, not the grid (the marks are sized once,
-    // or again when the grid changes).
+    // bodies whose points lie in it. Only last step's marked cells are
+    // cleared, so the cost follows the points, not the grid (the marks are
+    // sized once, or again when the grid changes).
     if cell_bodies.len() == cells.count() {
-        for own in point_cells.iter() {
-            for &cell in own {
-                cell_bodies[cell as usize] = 0;
-            }
+        for &(cell, _) in marked_cells.iter() {
+            cell_bodies[cell as usize] = 0;
+            near_bodies[cell as usize] = 0;
         }
     } else {
-        cell_bodies.clear();
-        cell_bodies.resize(cells.count(), 0);
+        for marks in [&mut *cell_bodies, &mut *near_bodies] {
+            marks.clear();
+            marks.resize(cells.count(), 0);
+        }
     }
+    marked_cells.clear();
     point_cells.resize_with(points.len(), Vec::new);
     for (k, (own, body)) in point_cells.iter_mut().zip(points).enumerate() {
         let Some(body) = body else {
@@ -98,10 +102,24 @@ pub fn compute_body_contacts(
             .with_min_len(MIN_POINTS_PER_TASK)
             .for_each(|(cell, x)| *cell = cells.of(*x) as u32);
         for &cell in own.iter() {
-            cell_bodies[cell as usize] |= 1 << k;
+            let mark = &mut cell_bodies[cell as usize];
+            if *mark == 0 {
+                marked_cells.push((cell, 0));
+            }
+            *mark |= 1 << k;
         }
     }
+    // The bodies in the 3 x 3 cells around each marked cell, found once per
+    // cell (in parallel) rather than once per point.
     let marks: &[u64] = cell_bodies;
+    marked_cells
+        .par_iter_mut()
+        .with_min_len(MIN_POINTS_PER_TASK)
+        .for_each(|(cell, around)| *around = cells.mask_around(marks, *cell as usize));
+    for &(cell, around) in marked_cells.iter() {
+        near_bodies[cell as usize] = around;
+    }
+    let near: &[u64] = near_bodies;
 
     // Candidates: points with a body they have a law with in their 3 x 3
     // cells, gathered per chunk of points, then sorted by (cell, body, point).
@@ -121,7 +139,7 @@ pub fn compute_body_contacts(
             chunk.candidates.reserve(range.len());
             for p in range {
                 let cell = own[p] as usize;
-                if cells.mask_around(marks, cell) & wanted != 0 {
+                if near[cell] & wanted != 0 {
                     chunk.candidates.push((cell as u32, k as u32, p as u32));
                 }
             }
@@ -267,6 +285,8 @@ struct CellIndex {
     inverse_size: Real,
     nx: usize,
     ny: usize,
+    /// The last cell's place, (nx − 1, ny − 1).
+    last: DVec2,
 }
 
 impl CellIndex {
@@ -276,6 +296,7 @@ impl CellIndex {
             inverse_size: 1.0 / grid.cell_size,
             nx: grid.cells[0],
             ny: grid.cells[1],
+            last: DVec2::new(grid.cells[0] as Real - 1.0, grid.cells[1] as Real - 1.0),
         }
     }
 
@@ -284,11 +305,12 @@ impl CellIndex {
     }
 
     fn of(&self, x: DVec2) -> usize {
-        // Truncation is the floor for c ≥ 0, and below 0 both clamp to 0.
-        let c = (x - self.origin) * self.inverse_size;
-        let i = (c.x.max(0.0) as usize).min(self.nx - 1);
-        let j = (c.y.max(0.0) as usize).min(self.ny - 1);
-        j * self.nx + i
+        // Clamped into [0, n − 1] cells first, so truncation is the floor
+        // and the conversion to a 32-bit index needs no range checks.
+        let c = ((x - self.origin) * self.inverse_size)
+            .max(DVec2::ZERO)
+            .min(self.last);
+        c.y as u32 as usize * self.nx + c.x as u32 as usize
     }
 
     /// The cells of the 3 x 3 block around `cell` (fewer at the edges), as

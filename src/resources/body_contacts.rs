@@ -72,6 +72,11 @@ pub struct BodyContacts {
     pub previous: Vec<BodyPairContact>,
     /// Bodies present in each cell, one bit per body index.
     pub cell_bodies: Vec<u64>,
+    /// Bodies present in the 3 x 3 cells around each marked cell.
+    pub near_bodies: Vec<u64>,
+    /// The cells marked this step, each once, with the bodies in the 3 x 3
+    /// cells around it.
+    pub marked_cells: Vec<(u32, u64)>,
     /// Each body's points' cells (row-major index), bodies in scene order.
     pub point_cells: Vec<Vec<u32>>,
     /// Points next to another body: (cell, body, point), sorted.
