@@ -305,8 +305,8 @@ impl CellIndex {
     }
 
     fn of(&self, x: DVec2) -> usize {
-        // Clamped into [0, n − 1] cells first, so truncation is the floor
-        // and the conversion to a 32-bit index needs no range checks.
+        // Clamped into [0, n − 1] cells first: truncation is then the
+        // floor, and the index lies in the grid.
         let c = ((x - self.origin) * self.inverse_size)
             .max(DVec2::ZERO)
             .min(self.last);
