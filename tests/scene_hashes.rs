@@ -17,6 +17,7 @@ const PINNED: &[(&str, u64)] = &[
     ("dam_break.ron", 0xaaf9972e19b2ab4c),
     ("elastic_column.ron", 0x1b825400700f46b5),
     ("geostatic_column.ron", 0xdebaa4daaa25eb85),
+    ("granular_slab.ron", 0xe537a459dbe27b47),
     ("hertz_disks.ron", 0xe34b374a911de2c5),
     ("pile_penetration.ron", 0x531af9a72f49c376),
     ("pile_penetration_axisymmetric.ron", 0x281bfc1cf401e21b),
