@@ -65,6 +65,7 @@ pub fn grid_to_particle(
         moved_by: (of_old, of_new),
         grid_damped,
         takes,
+        from_unconstrained,
     } = TransferOptions::new(&settings, clock.dt);
     for (mut points, mut travel, mut damped, layer, mut scratch) in &mut bodies {
         let TransferScratch {
@@ -127,15 +128,25 @@ pub fn grid_to_particle(
                         l + outer(of_old * node.velocity + of_new * node.velocity_new, g)
                     })
                 };
+                // The FLIP change's start: v^n, or p_i / m_i before the
+                // walls' constraints.
+                let start = if from_unconstrained {
+                    grid_old
+                        - stencil.gather(nodes, origin, row_len, DVec2::ZERO, |h, node, w, _| {
+                            h + w * node.held_back
+                        })
+                } else {
+                    grid_old
+                };
                 // At α = 0 this is the undamped change, bit for bit.
-                let change = local_damping(grid_new - grid_old, *v, alpha);
+                let change = local_damping(grid_new - start, *v, alpha);
                 // What the undamped pure FLIP update would give, for the
                 // energy balance.
                 let flip = if grid_damped {
                     let free = stencil.interpolate(undamped, origin, row_len);
-                    *v + (free - grid_old)
+                    *v + (free - start)
                 } else {
-                    *v + (grid_new - grid_old)
+                    *v + (grid_new - start)
                 };
                 let step = if order >= 1 {
                     let smoothed = stencil.interpolate(star, origin, row_len);
@@ -202,6 +213,8 @@ struct TransferOptions {
     /// Whether the update takes energy that the balance must count
     /// (undamped pure FLIP gives the FLIP update itself, bit for bit).
     takes: bool,
+    /// `Settings::flip_from_unconstrained`.
+    from_unconstrained: bool,
 }
 
 impl TransferOptions {
@@ -227,6 +240,7 @@ impl TransferOptions {
             },
             grid_damped,
             takes: beta != 0.0 || alpha != 0.0 || order >= 1 || grid_damped,
+            from_unconstrained: settings.flip_from_unconstrained,
         }
     }
 }
@@ -270,8 +284,9 @@ fn finish_the_remap(
     }
 }
 
-/// A point's interpolated nodal velocities: v^n, v^{n+1} and the change
-/// between them less particle damping.
+/// A point's interpolated nodal velocities: v^n, v^{n+1} and the FLIP
+/// change to v^{n+1} less particle damping (from v^n, or with
+/// `Settings::flip_from_unconstrained` from p_i / m_i).
 #[derive(Clone, Copy)]
 struct NodalVelocities {
     old: DVec2,
@@ -308,7 +323,11 @@ fn flip_pic_update(
         _ => (0.5 * (old + new) - 0.5 * beta * (*v - old)) * dt,
     };
     // Undamped, v^n + a_p Δt is v^{n+1} itself (kept exact).
-    let pic = if alpha == 0.0 { new } else { old + change };
+    let pic = if alpha == 0.0 {
+        new
+    } else {
+        old + local_damping(new - old, *v, alpha)
+    };
     *v = (1.0 - beta) * (*v + change) + beta * pic;
     step
 }

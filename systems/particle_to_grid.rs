@@ -151,6 +151,10 @@ pub fn particle_to_grid(
                 DVec2::ZERO
             };
         });
-        layer.apply_constraints(|n| &mut n.velocity);
+        layer.for_each_constrained(|fix, n| {
+            let free = n.velocity;
+            fix.apply(&mut n.velocity);
+            n.held_back = n.velocity - free;
+        });
     }
 }

@@ -115,6 +115,19 @@ pub struct Settings {
     pub affine_transfer: bool,
     /// Plane strain or axisymmetry (default `PlaneStrain`, as the paper).
     pub geometry: Geometry,
+    /// Eq. 11a's FLIP change taken from each node's start velocity before
+    /// the walls' constraints, p_i / m_i, instead of after them: a wall then
+    /// takes from the points the momentum it holds back, and the points
+    /// carry the grid's constrained momentum Σ m_i v_i^{n+1} exactly. Without
+    /// it the points keep that momentum: a granular body sliding on a
+    /// no-slip floor keeps points that report a velocity they do not move
+    /// with, and its travel does not converge with the cell
+    /// (`scenes/granular_slab.ron`). With it the walls take the kinetic
+    /// energy the points map onto them, a dissipation of first order in the
+    /// cell: an undamped elastic body ringing against a no-slip wall loses
+    /// energy. Default `false`; not with XPIC, whose smoothing already maps
+    /// the constrained velocities.
+    pub flip_from_unconstrained: bool,
 }
 
 impl Default for Settings {
@@ -129,6 +142,7 @@ impl Default for Settings {
             position_update: None,
             affine_transfer: false,
             geometry: Geometry::PlaneStrain,
+            flip_from_unconstrained: false,
         }
     }
 }
@@ -173,6 +187,11 @@ impl Settings {
                     "affine_transfer: XPIC's smoothing maps the point velocities without their gradients; use one or the other".into(),
                 ));
             }
+            if self.flip_from_unconstrained {
+                return Err(ParameterError::Inconsistent(
+                    "flip_from_unconstrained: XPIC's update (eq. 12a) has no FLIP change to take from the walls; use one or the other".into(),
+                ));
+            }
             if let Some(update) = self.position_update {
                 return Err(ParameterError::Inconsistent(format!(
                     "position_update: {update:?} is a choice of eq. 11 (the FLIP/PIC update); XPIC moves the points its own way (eq. 12b): leave position_update out"
@@ -210,6 +229,25 @@ mod tests {
                 "{message}"
             );
         }
+    }
+
+    #[test]
+    fn xpic_has_no_flip_change_to_take_from_the_walls() {
+        let settings = Settings {
+            xpic_order: Some(2),
+            flip_from_unconstrained: true,
+            ..Settings::default()
+        };
+        let message = settings.check().expect_err("refused").to_string();
+        assert!(
+            message.starts_with("flip_from_unconstrained: "),
+            "{message}"
+        );
+        let flip = Settings {
+            flip_from_unconstrained: true,
+            ..Settings::default()
+        };
+        assert!(flip.check().is_ok());
     }
 
     #[test]
