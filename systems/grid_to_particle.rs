@@ -36,7 +36,7 @@ use rayon::prelude::*;
 /// still move it) is put back on the wall, and its velocity's component
 /// into the wall removed.
 ///
-/// Reads: `Grid`, `Settings`, `Clock`, `SharedLayers` (groups), `GridLayer`, `TransferScratch::stencils`,
+/// Reads: `Grid`, `Settings`, `Clock`, `SharedLayers` (groups), `GridLayer`, `TransferScratch::stencils`, `held_back`,
 /// `order` and `undamped`, `MaterialPoints` (mass, contact force: the
 /// points in contact this step).
 /// Writes: `MaterialPoints` (position, velocity, velocity gradient of the
@@ -73,6 +73,7 @@ pub fn grid_to_particle(
             order: scatter_order,
             damped: taken,
             undamped,
+            held_back,
             remap,
             ..
         } = &mut *scratch;
@@ -93,7 +94,7 @@ pub fn grid_to_particle(
         } = &mut *points;
         let touched = &*contact_force;
         let nodes = layer.nodes();
-        let (star, undamped) = (&remap.star, &*undamped);
+        let (star, undamped, held_back) = (&remap.star, &*undamped, &*held_back);
         taken.resize(position.len(), 0.0);
         travel.0 = (
             position.par_iter_mut(),
@@ -131,10 +132,7 @@ pub fn grid_to_particle(
                 // The FLIP change's start: v^n, or p_i / m_i before the
                 // walls' constraints.
                 let start = if from_unconstrained {
-                    grid_old
-                        - stencil.gather(nodes, origin, row_len, DVec2::ZERO, |h, node, w, _| {
-                            h + w * node.held_back
-                        })
+                    grid_old - held_back_at(stencil, held_back, origin, row_len)
                 } else {
                     grid_old
                 };
@@ -187,6 +185,14 @@ pub fn grid_to_particle(
     if remaps {
         finish_the_remap(&mut shared, &mut bodies, remapped.then_some((dt, walls)));
     }
+}
+
+/// Σ S_ip of what the walls held back (`TransferScratch::held_back`): out
+/// of line, so that the per-point update stays small enough to be inlined
+/// where this option is off.
+#[inline(never)]
+fn held_back_at(stencil: &Stencil, held_back: &[DVec2], origin: [u32; 2], row_len: usize) -> DVec2 {
+    stencil.interpolate(held_back, origin, row_len)
 }
 
 /// What the settings ask of the transfer, read once a step.

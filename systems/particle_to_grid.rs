@@ -30,12 +30,13 @@ type StepInputs<'w> = (
 /// the body's layer (b the body's own `BodyAcceleration`, if any, at the
 /// step's start time), makes the layers of a contact group their sum
 /// (`SharedLayers`), and sets the nodal velocity,
-/// constrained. A point whose support leaves the grid is reported as a
+/// constrained (with `Settings::flip_from_unconstrained`, keeping what the
+/// constraints took in `TransferScratch::held_back`). A point whose support leaves the grid is reported as a
 /// numerical failure and contributes nothing.
 ///
 /// Reads: `Grid`, `Settings`, `Gravity`, `ContactSettings`, `Clock`, `BodyName`,
 /// `BodyAcceleration`, `MaterialPoints`.
-/// Writes: `TransferScratch` (stencils, order, patches), `GridLayer::nodes` (mass, momentum, external force, velocity),
+/// Writes: `TransferScratch` (stencils, order, patches, held back), `GridLayer::nodes` (mass, momentum, external force, velocity),
 /// `SharedLayers` (scratch), `Diagnostics`.
 pub fn particle_to_grid(
     (grid, settings, gravity, contact, clock): StepInputs,
@@ -142,7 +143,7 @@ pub fn particle_to_grid(
             n.external_force = sum.external_force;
         },
     );
-    for (.., mut layer, _) in &mut bodies {
+    for (.., mut layer, mut scratch) in &mut bodies {
         let cutoff = layer.mass_cutoff;
         layer.for_each_active(|n| {
             n.velocity = if n.mass > cutoff {
@@ -151,10 +152,17 @@ pub fn particle_to_grid(
                 DVec2::ZERO
             };
         });
-        layer.for_each_constrained(|fix, n| {
-            let free = n.velocity;
-            fix.apply(&mut n.velocity);
-            n.held_back = n.velocity - free;
-        });
+        if settings.flip_from_unconstrained {
+            let held_back = &mut scratch.held_back;
+            held_back.clear();
+            held_back.resize(layer.nodes().len(), DVec2::ZERO);
+            layer.for_each_constrained(|fix, k, n| {
+                let free = n.velocity;
+                fix.apply(&mut n.velocity);
+                held_back[k] = n.velocity - free;
+            });
+        } else {
+            layer.apply_constraints(|n| &mut n.velocity);
+        }
     }
 }

@@ -335,7 +335,7 @@ fn the_defaults_are_usf_with_remapped_positions_and_pure_flip() {
 fn the_suite_for_every_candidate() {
     use PositionUpdate::*;
     use UpdateScheme::*;
-    for (scheme, update) in [
+    let schemes = [
         (Usf, PaperEq11b),
         (Usf, NewGridVelocity),
         (Usf, RemappedVelocity),
@@ -343,13 +343,23 @@ fn the_suite_for_every_candidate() {
         (Usl, RemappedVelocity),
         (Musl, RemappedVelocity),
         (Musl, NewGridVelocity),
-    ] {
+    ]
+    .map(|(scheme, update)| {
         let settings = Settings {
             scheme,
             position_update: Some(update),
             ..Settings::default()
         };
-        let label = format!("{scheme:?} {update:?}");
+        (format!("{scheme:?} {update:?}"), settings)
+    });
+    let walls = Settings {
+        flip_from_unconstrained: true,
+        ..Settings::default()
+    };
+    let candidates = schemes
+        .into_iter()
+        .chain([("defaults with flip_from_unconstrained".to_string(), walls)]);
+    for (label, settings) in candidates {
         match std::panic::catch_unwind(|| suite(&label, settings)) {
             Ok(failed) => println!("{label}: over the bound: {failed:?}"),
             Err(_) => println!("{label}: a case failed to run (see the panic above)"),

@@ -20,10 +20,6 @@ pub struct GridNode {
     pub velocity: DVec2,
     /// Velocity at the end of the step after the momentum update (eq. 8a).
     pub velocity_new: DVec2,
-    /// What the constraints took from the start velocity, `velocity` less
-    /// p_i / m_i: zero but at a constrained node
-    /// (`Settings::flip_from_unconstrained` adds it to the FLIP change).
-    pub held_back: DVec2,
 }
 
 /// Which velocity components a constraint holds at zero.
@@ -183,11 +179,12 @@ impl GridLayer {
     /// Applies the constraints of the active nodes to the field selected by
     /// `field` (the others hold zero).
     pub fn apply_constraints(&mut self, field: impl Fn(&mut GridNode) -> &mut DVec2) {
-        self.for_each_constrained(|fix, n| fix.apply(field(n)));
+        self.for_each_constrained(|fix, _, n| fix.apply(field(n)));
     }
 
-    /// Calls `f` with each active constrained node and what it holds.
-    pub fn for_each_constrained(&mut self, mut f: impl FnMut(Fix, &mut GridNode)) {
+    /// Calls `f` with what each active constrained node holds, its place in
+    /// the window's nodes and the node.
+    pub fn for_each_constrained(&mut self, mut f: impl FnMut(Fix, usize, &mut GridNode)) {
         let Self {
             nodes,
             window,
@@ -200,7 +197,7 @@ impl GridLayer {
             if active.contains(at)
                 && let Some(k) = window.index_of(at)
             {
-                f(c.fix, &mut nodes[k]);
+                f(c.fix, k, &mut nodes[k]);
             }
         }
     }

@@ -45,6 +45,10 @@ pub struct TransferScratch {
     /// With grid damping, each node's velocity v^{n+1} without it, for the
     /// energy balance; sized on first use.
     pub undamped: Vec<DVec2>,
+    /// With `Settings::flip_from_unconstrained`, what the constraints took
+    /// from each node's start velocity: v_i^n less p_i / m_i, zero but at a
+    /// constrained node; sized on first use.
+    pub held_back: Vec<DVec2>,
     /// Each point's energy taken by this step's velocity update (see
     /// [`crate::components::DampedEnergy`]), sized on first use.
     pub damped: Vec<Real>,
