@@ -150,10 +150,18 @@ pub fn grid_to_particle(
                     let smoothed = stencil.interpolate(star, origin, row_len);
                     xpic_update(v, smoothed, change, grid_old, dt)
                 } else {
+                    // The PIC term's damped change is from v^n: the FLIP
+                    // change itself unless that starts from p_i / m_i.
+                    let pic_change = if from_unconstrained && alpha != 0.0 {
+                        local_damping(grid_new - grid_old, *v, alpha)
+                    } else {
+                        change
+                    };
                     let nodal = NodalVelocities {
                         old: grid_old,
                         new: grid_new,
                         change,
+                        pic_change,
                     };
                     flip_pic_update(v, nodal, (beta, alpha), position_update, dt)
                 };
@@ -290,14 +298,16 @@ fn finish_the_remap(
     }
 }
 
-/// A point's interpolated nodal velocities: v^n, v^{n+1} and the FLIP
-/// change to v^{n+1} less particle damping (from v^n, or with
-/// `Settings::flip_from_unconstrained` from p_i / m_i).
+/// A point's interpolated nodal velocities: v^n, v^{n+1}, the FLIP change
+/// to v^{n+1} less particle damping (from v^n, or with
+/// `Settings::flip_from_unconstrained` from p_i / m_i), and the change from
+/// v^n less particle damping for the PIC term.
 #[derive(Clone, Copy)]
 struct NodalVelocities {
     old: DVec2,
     new: DVec2,
     change: DVec2,
+    pic_change: DVec2,
 }
 
 /// Eqs. 12a/12b: V^{n+1} = S v* + a_p Δt (`smoothed` is S v*), and the step
@@ -322,18 +332,19 @@ fn flip_pic_update(
     update: Option<PositionUpdate>,
     dt: Real,
 ) -> DVec2 {
-    let NodalVelocities { old, new, change } = nodal;
+    let NodalVelocities {
+        old,
+        new,
+        change,
+        pic_change,
+    } = nodal;
     let step = match update {
         Some(PositionUpdate::NewGridVelocity) => new * dt,
         Some(PositionUpdate::RemappedVelocity) => DVec2::ZERO,
         _ => (0.5 * (old + new) - 0.5 * beta * (*v - old)) * dt,
     };
     // Undamped, v^n + a_p Δt is v^{n+1} itself (kept exact).
-    let pic = if alpha == 0.0 {
-        new
-    } else {
-        old + local_damping(new - old, *v, alpha)
-    };
+    let pic = if alpha == 0.0 { new } else { old + pic_change };
     *v = (1.0 - beta) * (*v + change) + beta * pic;
     step
 }
