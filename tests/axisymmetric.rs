@@ -639,3 +639,37 @@ fn under_musl_a_breathing_cylinder_keeps_its_energy() {
     assert!(least_kinetic < 0.2, "{least_kinetic}");
     assert!(drift < 0.01, "{drift}");
 }
+
+#[test]
+fn a_rigid_punchs_stiffness_converges_to_the_finite_elements_at_first_order() {
+    // scenes/axisymmetric_punch.ron at twice its cell (a/5) and at its own
+    // (a/10), against finite elements of the same cylinder extrapolated to
+    // a zero element: the rigid edge makes both converge at first order, so
+    // each run is stiffer than the reference and halving the cell halves
+    // the excess (ratio held to 0.4–0.6).
+    use mpdem::verify::punch;
+    let base = Scene::load(&common::scene_path("axisymmetric_punch.ron")).expect("scene");
+    let reference = {
+        let elements = punch::finite_elements();
+        punch::extrapolated(elements[0], elements[1])
+    };
+    let excess = |factor: Real| {
+        let mut sim = Simulation::from_scene(&punch::at_cell(&base, factor)).expect("build");
+        sim.run().expect("run");
+        punch::stiffness(&sim).expect("stiffness") / punch::sneddon() / reference - 1.0
+    };
+    let (coarse, fine) = (excess(2.0), excess(1.0));
+    println!("excess over the finite elements: a/5 {coarse:+.4}, a/10 {fine:+.4}");
+    assert!(coarse > 0.0 && fine > 0.0, "{coarse} {fine}");
+    assert!(
+        (0.4..0.6).contains(&(fine / coarse)),
+        "ratio {}",
+        fine / coarse
+    );
+}
+
+#[test]
+#[ignore = "the full punch case at three cells: about 1 minute on 2 cores"]
+fn full_axisymmetric_punch_converges_to_the_finite_elements() {
+    common::verify_case("axisymmetric_punch");
+}

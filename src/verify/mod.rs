@@ -17,6 +17,8 @@ pub mod elastic_disk;
 pub mod geostatic;
 pub mod hertz;
 pub mod pile;
+pub mod punch;
+pub mod punch_elements;
 pub mod quad4;
 pub mod report;
 pub mod rings;
@@ -239,6 +241,13 @@ pub const CASES: &[Case] = &[
         about: "geostatic stage then a 150 kPa surcharge: σ_v and K0",
         minutes: 0.1,
         run: geostatic::run,
+    },
+    Case {
+        name: "axisymmetric_punch",
+        source: "finite elements (Sneddon 1946)",
+        about: "rigid flat punch on an elastic cylinder as a body of revolution: stiffness at three cells against finite elements",
+        minutes: 1.0,
+        run: punch::run,
     },
     Case {
         name: "two_rings",
