@@ -273,15 +273,15 @@ pub const CASES: &[Case] = &[
     Case {
         name: "pile_penetration",
         source: "paper 4.3",
-        about: "pile driven into Mohr–Coulomb sand: the cone resistance q_c",
-        minutes: 6.0,
+        about: "pile driven into Mohr–Coulomb sand at two cells: the cone resistance q_c and its convergence",
+        minutes: 25.0,
         run: pile::run,
     },
     Case {
         name: "pile_penetration_axisymmetric",
         source: "paper 4.3, axisymmetric",
-        about: "the same pile and sand axisymmetric, Susila and Hryciw's geometry: q_c = 2 f_c / R²",
-        minutes: 6.5,
+        about: "the same pile and sand axisymmetric, Susila and Hryciw's geometry, at two cells: q_c = 2 f_c / R²",
+        minutes: 23.0,
         run: pile::run_axisymmetric,
     },
     Case {
