@@ -411,14 +411,17 @@ fn draw_series_chart<DB: DrawingBackend>(
 ) -> DrawResult<DB> {
     root.fill(&WHITE)?;
     // The legend gets a column of its own, right of the chart, so that it
-    // never covers a curve.
-    let named = series.iter().any(|s| !s.name.is_empty());
+    // never covers a curve: wide enough for the longest name, at most three
+    // tenths of the image, and names longer than that wrapped.
     let (width, _) = root.dim_in_pixel();
-    let (plot_area, legend_area) = root.split_horizontally(if named {
-        width.saturating_sub(LEGEND_WIDTH)
-    } else {
-        width
-    });
+    let longest = series.iter().map(|s| s.name.chars().count()).max();
+    let legend_width = match longest {
+        None | Some(0) => 0,
+        Some(chars) => (LEGEND_KEY_WIDTH + LEGEND_CHAR_WIDTH * chars as u32)
+            .clamp(LEGEND_WIDTH, width * 3 / 10),
+    };
+    let columns = (legend_width.saturating_sub(LEGEND_KEY_WIDTH) / LEGEND_CHAR_WIDTH) as usize;
+    let (plot_area, legend_area) = root.split_horizontally(width - legend_width);
     let samples = || {
         series
             .iter()
@@ -435,7 +438,7 @@ fn draw_series_chart<DB: DrawingBackend>(
         .build_cartesian_2d(x_range, y_range)?;
     draw_axes(&mut chart, x_label, y_label, 15)?;
 
-    let mut row = 0;
+    let mut y = 70;
     for (index, s) in series.iter().enumerate() {
         let color = SERIES_COLORS[index % SERIES_COLORS.len()];
         let points = s
@@ -445,24 +448,32 @@ fn draw_series_chart<DB: DrawingBackend>(
             .filter(|(x, y)| x.is_finite() && y.is_finite());
         chart.draw_series(LineSeries::new(points, color.stroke_width(2)))?;
         if !s.name.is_empty() {
-            let y = 70 + 24 * row;
             legend_area.draw(&PathElement::new(
                 vec![(10, y), (34, y)],
                 color.stroke_width(2),
             ))?;
-            legend_area.draw(&Text::new(
-                s.name.to_string(),
-                (42, y - 8),
-                (FONT, 15).into_font().color(&BLACK),
-            ))?;
-            row += 1;
+            for text in wrap(s.name, columns.max(10)) {
+                legend_area.draw(&Text::new(
+                    text,
+                    (42, y - 8),
+                    (FONT, 15).into_font().color(&BLACK),
+                ))?;
+                y += 18;
+            }
+            y += 6;
         }
     }
     Ok(())
 }
 
-/// Width of the legend column right of a line chart (pixels).
+/// Narrowest legend column right of a line chart (pixels).
 const LEGEND_WIDTH: u32 = 150;
+
+/// Room for a legend entry's key before its name (pixels).
+const LEGEND_KEY_WIDTH: u32 = 50;
+
+/// About the width of a character of the legend's 15-pixel font (pixels).
+const LEGEND_CHAR_WIDTH: u32 = 8;
 
 /// Draws the snapshot of [`plot_points`] on `root`: title band, chart and colour bar.
 fn draw_snapshot<DB: DrawingBackend>(
