@@ -187,15 +187,7 @@ fn draw_lines_chart<DB: DrawingBackend>(
         } else {
             legend_area.draw(&PathElement::new(key, style))?;
         }
-        for text in wrap(line.name, columns) {
-            legend_area.draw(&Text::new(
-                text,
-                (42, y - 8),
-                (FONT, 14).into_font().color(&BLACK),
-            ))?;
-            y += 17;
-        }
-        y += 7;
+        y = draw_legend_name(&legend_area, line.name, columns, y, 14)?;
     }
     Ok(())
 }
@@ -370,6 +362,27 @@ struct Snapshot<'a> {
 /// Result of drawing on a plotters drawing area of backend `DB`.
 type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
+/// Draws a legend entry's `name` in the legend column `area`, wrapped to
+/// `columns` characters, its first line beside the entry's key at height
+/// `y`, in a `size`-pixel font; returns the height of the next entry's key.
+fn draw_legend_name<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    name: &str,
+    columns: usize,
+    mut y: i32,
+    size: u32,
+) -> Result<i32, DrawingAreaErrorKind<DB::ErrorType>> {
+    for text in wrap(name, columns) {
+        area.draw(&Text::new(
+            text,
+            (42, y - 8),
+            (FONT, size).into_font().color(&BLACK),
+        ))?;
+        y += size as i32 + 3;
+    }
+    Ok(y + size as i32 / 2)
+}
+
 /// Registers the embedded DejaVu Sans as the plotters font family [`FONT`], once per process.
 fn register_font() -> std::io::Result<()> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
@@ -452,15 +465,7 @@ fn draw_series_chart<DB: DrawingBackend>(
                 vec![(10, y), (34, y)],
                 color.stroke_width(2),
             ))?;
-            for text in wrap(s.name, columns.max(10)) {
-                legend_area.draw(&Text::new(
-                    text,
-                    (42, y - 8),
-                    (FONT, 15).into_font().color(&BLACK),
-                ))?;
-                y += 18;
-            }
-            y += 6;
+            y = draw_legend_name(&legend_area, s.name, columns.max(10), y, 15)?;
         }
     }
     Ok(())
