@@ -654,7 +654,8 @@ fn a_rigid_punchs_stiffness_converges_to_the_finite_elements_at_first_order() {
         punch::extrapolated(elements[0], elements[1])
     };
     let excess = |factor: Real| {
-        let mut sim = Simulation::from_scene(&punch::at_cell(&base, factor)).expect("build");
+        let mut sim =
+            Simulation::from_scene(&mpdem::verify::at_cell(&base, factor)).expect("build");
         sim.run().expect("run");
         punch::stiffness(&sim).expect("stiffness") / punch::sneddon() / reference - 1.0
     };

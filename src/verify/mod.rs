@@ -537,6 +537,26 @@ pub enum VerifyError {
     Measurement(String),
 }
 
+/// `base` with its cell multiplied by `factor`, for a case's runs at other
+/// cells: the grid keeps its extent (its columns rounded, its rows rounded
+/// up), and the blocks' contact springs go with the cell, the points'
+/// spacing, so that a block meets the same stiffness per metre of its
+/// outline.
+pub fn at_cell(base: &Scene, factor: Real) -> Scene {
+    let mut scene = base.clone();
+    let extent = base.grid.max() - base.grid.origin;
+    scene.grid.cell_size *= factor;
+    scene.grid.cells = (
+        (extent.x / scene.grid.cell_size).round() as usize,
+        (extent.y / scene.grid.cell_size - 1e-9).ceil() as usize,
+    );
+    for block in &mut scene.blocks {
+        block.contact.normal_stiffness *= factor;
+        block.contact.tangential_stiffness *= factor;
+    }
+    scene
+}
+
 /// `value` as a signed percentage with `decimals` decimals, e.g. "+1.25%".
 pub fn percent(value: Real, decimals: usize) -> String {
     format!("{:+.*}%", decimals, 100.0 * value)

@@ -85,20 +85,6 @@ fn judged_band(curve: &[(Real, Real, Real)]) -> Real {
 /// for the piles to count as converged in the cell.
 const CONVERGED_CHANGE: Real = 0.05;
 
-/// `scene` with its cell halved: twice the cells over the same extent, and
-/// the contact springs halved with the points' spacing, so that the cone
-/// meets the same stiffness per metre of its outline.
-fn cell_halved(scene: &Scene) -> Scene {
-    let mut scene = scene.clone();
-    scene.grid.cell_size *= 0.5;
-    scene.grid.cells = (2 * scene.grid.cells.0, 2 * scene.grid.cells.1);
-    for block in &mut scene.blocks {
-        block.contact.normal_stiffness *= 0.5;
-        block.contact.tangential_stiffness *= 0.5;
-    }
-    scene
-}
-
 /// Both cells of a pile scene: the checks of each run (prefixed by its
 /// cell), the mean q_c over z/R 4–8 at the scene's cell h and at h/2, the
 /// convergence check, and one figure of both curves.
@@ -114,7 +100,7 @@ struct TwoCells {
 /// the mean q_c over z/R 4–8 changes by at most `CONVERGED_CHANGE`.
 fn at_two_cells(ctx: &Context, name: &str, label: &str) -> Result<TwoCells, VerifyError> {
     let scene = ctx.scene(&format!("{name}.ron"))?;
-    let half = cell_halved(&scene);
+    let half = super::at_cell(&scene, 0.5);
     let mut checks = Vec::new();
     let mut curves = Vec::new();
     for (run, out, scene, cell) in [

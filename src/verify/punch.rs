@@ -15,7 +15,6 @@ use super::{Check, Context, Curve, Figure, Measured, VerifyError, percent};
 use crate::Simulation;
 use crate::math::Real;
 use crate::resources::BlockLog;
-use crate::scene::Scene;
 use std::f64::consts::PI;
 
 /// Punch radius a (m), cylinder radius and height (m), Young's modulus
@@ -38,24 +37,6 @@ const ELEMENTS_PER_RADIUS: [usize; 2] = [20, 40];
 /// unit the stiffnesses are given in.
 pub fn sneddon() -> Real {
     2.0 * PUNCH_RADIUS * YOUNGS_MODULUS / (1.0 - POISSON_RATIO * POISSON_RATIO)
-}
-
-/// `base` with its cell multiplied by `factor`: the grid keeps its extent
-/// (its rows rounded up), and the contact springs go with the cell, which
-/// keeps the contact's compliance the same share of the stroke.
-pub fn at_cell(base: &Scene, factor: Real) -> Scene {
-    let mut scene = base.clone();
-    let extent = base.grid.max() - base.grid.origin;
-    scene.grid.cell_size *= factor;
-    scene.grid.cells = (
-        (extent.x / scene.grid.cell_size).round() as usize,
-        (extent.y / scene.grid.cell_size - 1e-9).ceil() as usize,
-    );
-    for block in &mut scene.blocks {
-        block.contact.normal_stiffness *= factor;
-        block.contact.tangential_stiffness *= factor;
-    }
-    scene
 }
 
 /// The punch's stiffness dF/dδ (N/m, F = 2π f its whole force): the least-
@@ -117,7 +98,7 @@ pub fn run(ctx: &Context) -> Result<Measured, VerifyError> {
     let base = ctx.scene("axisymmetric_punch.ron")?;
     let mut engine = Vec::new();
     for factor in CELL_FACTORS {
-        let scene = at_cell(&base, factor);
+        let scene = super::at_cell(&base, factor);
         let per_radius = PUNCH_RADIUS / scene.grid.cell_size;
         let run = format!("axisymmetric_punch, cell a/{per_radius:.0}");
         let sim = ctx.run(&run, &scene)?;
