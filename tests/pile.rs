@@ -85,7 +85,7 @@ fn reduced_axisymmetric_pile_meets_more_resistance_than_the_plane_one() {
 }
 
 #[test]
-#[ignore = "the full pile scene at two cells: about 25 minutes on 2 cores"]
+#[ignore = "the full pile scene at two cells: about 15 minutes on 2 cores"]
 fn full_plane_pile_converges_in_the_cell() {
     // Its q_c (f_c / R) is reported, not judged: Susila and Hryciw's
     // 4–6 MPa comes from an axisymmetric geometry. The stages at both
@@ -95,7 +95,7 @@ fn full_plane_pile_converges_in_the_cell() {
 }
 
 #[test]
-#[ignore = "the full axisymmetric pile scene at two cells: about 23 minutes on 2 cores"]
+#[ignore = "the full axisymmetric pile scene at two cells: about 15 minutes on 2 cores"]
 fn full_axisymmetric_pile_runs_through_its_stages_at_two_cells() {
     // Its convergence in the cell and its q_c (2 f_c / R²) over z/R 4–8,
     // extrapolated to a zero cell, against Susila and Hryciw's 4–6 MPa are

@@ -274,14 +274,14 @@ pub const CASES: &[Case] = &[
         name: "pile_penetration",
         source: "paper 4.3",
         about: "pile driven into Mohr–Coulomb sand at two cells: the cone resistance q_c and its convergence",
-        minutes: 25.0,
+        minutes: 15.0,
         run: pile::run,
     },
     Case {
         name: "pile_penetration_axisymmetric",
         source: "paper 4.3, axisymmetric",
         about: "the same pile and sand axisymmetric, Susila and Hryciw's geometry, at two cells: q_c = 2 f_c / R²",
-        minutes: 23.0,
+        minutes: 15.0,
         run: pile::run_axisymmetric,
     },
     Case {

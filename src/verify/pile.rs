@@ -153,7 +153,7 @@ fn extrapolated(two: &TwoCells) -> Real {
     2.0 * two.fine - two.coarse
 }
 
-/// The paper's plane-strain scene at its cell and at half of it (about 25
+/// The paper's plane-strain scene at its cell and at half of it (about 15
 /// minutes on 2 cores); the curves are written to
 /// `OUT/pile_penetration/qc.csv` and `cell_halved/qc.csv` and plotted to
 /// `qc.png`. q_c is reported, not judged: Susila and Hryciw's plateau comes
@@ -174,7 +174,7 @@ pub fn run(ctx: &Context) -> Result<Measured, VerifyError> {
 }
 
 /// The same pile as a body of revolution (`pile_penetration_axisymmetric`)
-/// at its cell and at half of it (about 23 minutes on 2 cores), the
+/// at its cell and at half of it (about 15 minutes on 2 cores), the
 /// geometry of Susila and Hryciw's finite elements: q_c = 2 f_c / R² over
 /// z/R 4–8, extrapolated to a zero cell at first order, is judged against
 /// their 4–6 MPa, after its convergence in the cell.
