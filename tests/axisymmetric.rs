@@ -670,7 +670,7 @@ fn a_rigid_punchs_stiffness_converges_to_the_finite_elements_at_first_order() {
 }
 
 #[test]
-#[ignore = "the full punch case at three cells: about 1 minute on 2 cores"]
+#[ignore = "the full punch case at three cells: under a minute on 2 cores"]
 fn full_axisymmetric_punch_converges_to_the_finite_elements() {
     common::verify_case("axisymmetric_punch");
 }

@@ -50,7 +50,7 @@ fn reduced_dam_break_settles_breaks_and_keeps_the_water_out_of_the_beam() {
 }
 
 #[test]
-#[ignore = "the full dam break: about 13 minutes on 2 cores"]
+#[ignore = "the full dam break: about 2 minutes on 2 cores"]
 fn dam_break_settles_breaks_and_keeps_the_water_out_of_the_beam() {
     common::verify_case("dam_break");
 }

@@ -63,7 +63,7 @@ fn coarse_disks_carry_the_applied_load_along_the_line_of_centres() {
 }
 
 #[test]
-#[ignore = "seven runs and the placement study, about 7 minutes"]
+#[ignore = "seven runs and the placement study, about 9 minutes"]
 fn hertz_disks_follow_the_2d_hertz_law_and_converge() {
     // The targets: within 10% at the finest resolution, the error
     // falling with resolution, the turned pair within 5% of the unturned;

@@ -246,7 +246,7 @@ pub const CASES: &[Case] = &[
         name: "axisymmetric_punch",
         source: "finite elements (Sneddon 1946)",
         about: "rigid flat punch on an elastic cylinder as a body of revolution: stiffness at three cells against finite elements",
-        minutes: 1.0,
+        minutes: 0.3,
         run: punch::run,
     },
     Case {
@@ -267,7 +267,7 @@ pub const CASES: &[Case] = &[
         name: "hertz_disks",
         source: "paper 4.4.2",
         about: "two elastic disks pressed together against the 2D Hertz law, four resolutions",
-        minutes: 7.0,
+        minutes: 9.5,
         run: hertz::run,
     },
     Case {
@@ -288,21 +288,21 @@ pub const CASES: &[Case] = &[
         name: "pile_penetration_deep",
         source: "paper 4.3, to 12R",
         about: "both piles driven to z/R = 12 with the fixed base 6R below the tip: whether q_c levels off",
-        minutes: 20.0,
+        minutes: 14.0,
         run: pile::run_deep,
     },
     Case {
         name: "dam_break",
         source: "paper 4.5.2",
         about: "dam break on an elastic cantilever beam: the impact on the beam",
-        minutes: 13.0,
+        minutes: 2.0,
         run: dam_break::run,
     },
     Case {
         name: "column_collapse",
         source: "Lube et al. 2005",
         about: "granular column collapse, H/L = 0.5: run-out and final height",
-        minutes: 20.0,
+        minutes: 7.0,
         run: collapse::run,
     },
 ];
