@@ -8,7 +8,7 @@
 use super::{Check, Context, Curve, Figure, Measured, VerifyError, percent};
 use crate::Simulation;
 use crate::io::csv::write_curve;
-use crate::io::plot::{Series, plot_series};
+use crate::io::plot::{Line, plot_lines};
 use crate::math::Real;
 use crate::resources::{BlockLog, Geometry, Settings, StageEnd, StageEndReason, StageLog};
 use crate::scene::{Scene, Shape};
@@ -76,9 +76,16 @@ const PLATEAU: (Real, Real) = (4e6, 6e6);
 /// influence and above the fixed base's.
 const JUDGED_DEPTHS: (Real, Real) = (4.0, 8.0);
 
-/// Mean q_c over the judged depths (NaN without samples there).
-fn judged_band(curve: &[(Real, Real, Real)]) -> Real {
-    mean_between(curve, JUDGED_DEPTHS.0, JUDGED_DEPTHS.1).unwrap_or(Real::NAN)
+/// Mean q_c over the judged depths; an error if the pile never reached
+/// them.
+fn judged_band(curve: &[(Real, Real, Real)]) -> Result<Real, VerifyError> {
+    mean_between(curve, JUDGED_DEPTHS.0, JUDGED_DEPTHS.1).ok_or_else(|| {
+        let reached = curve.iter().map(|&(_, z, _)| z).fold(0.0, Real::max);
+        VerifyError::Measurement(format!(
+            "no q_c sample over z/R {}–{}: the pile reached z/R = {reached:.2}",
+            JUDGED_DEPTHS.0, JUDGED_DEPTHS.1
+        ))
+    })
 }
 
 /// The largest change of the mean q_c over z/R 4–8 when the cell is halved
@@ -120,7 +127,7 @@ fn at_two_cells(ctx: &Context, name: &str, label: &str) -> Result<TwoCells, Veri
         }));
         curves.push((label, curve));
     }
-    let (coarse, fine) = (judged_band(&curves[0].1), judged_band(&curves[1].1));
+    let (coarse, fine) = (judged_band(&curves[0].1)?, judged_band(&curves[1].1)?);
     let change = fine / coarse - 1.0;
     checks.push(
         Check::judged(
@@ -425,29 +432,37 @@ fn figure(curves: &[(String, ConeCurve)]) -> Figure {
         ))
 }
 
-/// q_c against z / R with the published band.
+/// q_c (MPa) against z / R, solid, with the published band's two bounds
+/// as one dashed black line, as in the report's figure.
 fn plot(path: &Path, curve: &[(Real, Real, Real)], label: &str) -> Result<(), VerifyError> {
-    let measured: Vec<(Real, Real)> = curve.iter().map(|&(_, z, q)| (z, q)).collect();
+    let measured: Vec<(Real, Real)> = curve.iter().map(|&(_, z, q)| (z, q / 1e6)).collect();
     let end = measured.last().map_or(9.0, |p| p.0);
-    let low = [(0.0, PLATEAU.0), (end, PLATEAU.0)];
-    let high = [(0.0, PLATEAU.1), (end, PLATEAU.1)];
-    plot_series(
+    let (low, high) = (PLATEAU.0 / 1e6, PLATEAU.1 / 1e6);
+    let band = [
+        (0.0, low),
+        (end, low),
+        (Real::NAN, Real::NAN),
+        (0.0, high),
+        (end, high),
+    ];
+    plot_lines(
         path,
+        (900, 600),
         "Cone resistance, pile penetration",
         "z / R",
-        "q_c (Pa)",
+        "q_c (MPa)",
         &[
-            Series {
+            Line {
                 name: label,
                 points: &measured,
+                color: 0,
+                dashed: false,
             },
-            Series {
-                name: "published plateau, 4 and 6 MPa",
-                points: &low,
-            },
-            Series {
-                name: "",
-                points: &high,
+            Line {
+                name: "published plateau, 4–6 MPa (Susila and Hryciw)",
+                points: &band,
+                color: 10,
+                dashed: true,
             },
         ],
     )
@@ -455,4 +470,23 @@ fn plot(path: &Path, curve: &[(Real, Real, Real)], label: &str) -> Result<(), Ve
         path: path.to_path_buf(),
         source,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_judged_band_is_the_mean_over_z_r_4_to_8_or_says_how_deep_the_pile_went() {
+        let curve: ConeCurve = (0..=90)
+            .map(|k| {
+                let z = Real::from(k) * 0.1;
+                (z, z, if (4.0..8.0).contains(&z) { 3e6 } else { 9e6 })
+            })
+            .collect();
+        assert_eq!(judged_band(&curve).ok(), Some(3e6));
+        let shallow: ConeCurve = curve.into_iter().filter(|&(_, z, _)| z < 2.05).collect();
+        let message = judged_band(&shallow).unwrap_err().to_string();
+        assert!(message.contains("reached z/R = 2.00"), "{message}");
+    }
 }
