@@ -8,11 +8,9 @@
 use super::{Check, Context, Curve, Figure, Measured, VerifyError, percent};
 use crate::Simulation;
 use crate::io::csv::write_curve;
-use crate::io::plot::{Line, plot_lines};
 use crate::math::Real;
 use crate::resources::{BlockLog, Geometry, Settings, StageEnd, StageEndReason, StageLog};
 use crate::scene::{Scene, Shape};
-use std::path::Path;
 
 /// Radius of the scene's pile (m).
 pub const RADIUS: Real = 0.4;
@@ -352,7 +350,9 @@ fn measure_scene(
         path: dir.join("qc.csv"),
         source,
     })?;
-    plot(&dir.join("qc.png"), &curve, label)?;
+    let figure = figure(&[(label.to_string(), curve.clone())]);
+    let png = dir.join("qc.png");
+    super::report::draw(&png, &figure).map_err(|source| VerifyError::Io { path: png, source })?;
 
     let reasons: Vec<StageEndReason> = sim
         .world()
@@ -395,7 +395,6 @@ fn measure_scene(
         profile.join(" / "),
         "a plateau of about 5 MPa from z/R ≈ 3 (paper Fig. 16)",
     ));
-    let figure = figure(&[(label.to_string(), curve.clone())]);
     Ok((curve, checks, figure))
 }
 
@@ -430,46 +429,6 @@ fn figure(curves: &[(String, ConeCurve)]) -> Figure {
                 (end, high),
             ],
         ))
-}
-
-/// q_c (MPa) against z / R, solid, with the published band's two bounds
-/// as one dashed black line, as in the report's figure.
-fn plot(path: &Path, curve: &[(Real, Real, Real)], label: &str) -> Result<(), VerifyError> {
-    let measured: Vec<(Real, Real)> = curve.iter().map(|&(_, z, q)| (z, q / 1e6)).collect();
-    let end = measured.last().map_or(9.0, |p| p.0);
-    let (low, high) = (PLATEAU.0 / 1e6, PLATEAU.1 / 1e6);
-    let band = [
-        (0.0, low),
-        (end, low),
-        (Real::NAN, Real::NAN),
-        (0.0, high),
-        (end, high),
-    ];
-    plot_lines(
-        path,
-        (900, 600),
-        "Cone resistance, pile penetration",
-        "z / R",
-        "q_c (MPa)",
-        &[
-            Line {
-                name: label,
-                points: &measured,
-                color: 0,
-                dashed: false,
-            },
-            Line {
-                name: "published plateau, 4–6 MPa (Susila and Hryciw)",
-                points: &band,
-                color: 10,
-                dashed: true,
-            },
-        ],
-    )
-    .map_err(|source| VerifyError::Io {
-        path: path.to_path_buf(),
-        source,
-    })
 }
 
 #[cfg(test)]

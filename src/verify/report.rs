@@ -86,7 +86,7 @@ fn figure_file(case: &str, k: usize) -> String {
 /// figure has several computed curves and as many references, the k-th
 /// reference is the k-th computed curve's and shares its colour;
 /// otherwise the references are black, then grey.
-fn draw(path: &Path, figure: &Figure) -> std::io::Result<()> {
+pub(crate) fn draw(path: &Path, figure: &Figure) -> std::io::Result<()> {
     let of_kind = |kind| figure.curves.iter().filter(move |c| c.kind == kind).count();
     let computed_curves = of_kind(CurveKind::Computed);
     let paired = computed_curves > 1 && computed_curves == of_kind(CurveKind::Reference);
