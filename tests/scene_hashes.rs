@@ -26,6 +26,7 @@ const PINNED: &[(&str, u64)] = &[
     ("rigid_tip.ron", 0x0b0e92d9e2f72adb),
     ("sliding_45.ron", 0xc088f66365b9ba31),
     ("stacked_blocks.ron", 0x6b5bb30b8e4d18db),
+    ("strip_footing.ron", 0x5cc766d766dd9aa6),
     ("toppling_14.ron", 0x176867ad54d76f86),
     ("toppling_16.ron", 0xed1a58fdaa918b35),
     ("toppling_18.ron", 0x8b6258e1a6ce2ee9),

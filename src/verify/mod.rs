@@ -14,6 +14,7 @@ pub mod collapse;
 pub mod dam_break;
 pub mod elastic_block;
 pub mod elastic_disk;
+pub mod footing;
 pub mod geostatic;
 pub mod hertz;
 pub mod pile;
@@ -248,6 +249,13 @@ pub const CASES: &[Case] = &[
         about: "rigid flat punch on an elastic cylinder as a body of revolution: stiffness at three cells against finite elements",
         minutes: 0.3,
         run: punch::run,
+    },
+    Case {
+        name: "strip_footing",
+        source: "Prandtl 1920, Reissner 1924",
+        about: "smooth rigid strip footing on a weightless frictional soil under a surcharge: collapse load at two cells against N_q",
+        minutes: 3.0,
+        run: footing::run,
     },
     Case {
         name: "two_rings",
