@@ -29,6 +29,11 @@ columns, Phys. Rev. E 72 (2005) 041301.
 in normally consolidated sand, Int. J. Numer. Anal. Methods Geomech. 27 (7) (2003) 585–602.
 4. K. Liao, C. Hu, M. Sueyoshi, Free surface flow impacting on an elastic structure: Experiment \
 versus numerical simulation, Appl. Ocean Res. 50 (2015) 192–208.
+5. I. N. Sneddon, Boussinesq's problem for a flat-ended cylinder, Proc. Cambridge Philos. Soc. \
+42 (1946) 29–39.
+6. L. Prandtl, Über die Härte plastischer Körper, Nachr. Ges. Wiss. Göttingen, Math.-Phys. Kl. \
+(1920) 74–85.
+7. H. Reissner, Zum Erddruckproblem, Proc. 1st Int. Congr. Appl. Mech., Delft (1924) 295–311.
 ";
 
 /// Why the report could not be written.
