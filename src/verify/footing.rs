@@ -14,7 +14,6 @@
 use super::{Check, Context, Curve, Figure, Measured, VerifyError, percent};
 use crate::Simulation;
 use crate::math::Real;
-use crate::resources::BlockLog;
 use std::f64::consts::PI;
 
 /// Footing width B (m), surcharge q (Pa) and friction angle φ (degrees) of
@@ -37,21 +36,12 @@ pub fn prandtl_nq(friction_angle_degrees: Real) -> Real {
 /// settlement from where the footing stood when first sampled, p its
 /// vertical reaction over the half model's half width.
 pub fn pressure_curve(sim: &Simulation) -> Result<Vec<(Real, Real)>, VerifyError> {
-    let log = sim.world().resource::<BlockLog>();
-    let start = log
-        .samples
-        .first()
-        .ok_or_else(|| VerifyError::Measurement("the footing was never sampled".into()))?
-        .origin;
-    Ok(log
-        .samples
-        .iter()
-        .map(|s| {
-            let pressure = s.force.y / (0.5 * WIDTH);
-            (
-                (start.y - s.origin.y) / WIDTH,
-                (pressure + SURCHARGE) / SURCHARGE,
-            )
+    let samples = super::pressed_block(sim, "footing")?;
+    Ok(samples
+        .into_iter()
+        .map(|(sunk, force)| {
+            let pressure = force / (0.5 * WIDTH);
+            (sunk / WIDTH, (pressure + SURCHARGE) / SURCHARGE)
         })
         .collect())
 }

@@ -30,7 +30,7 @@ pub mod wave;
 
 use crate::components::MaterialPoints;
 use crate::math::{DVec2, Real};
-use crate::resources::{ProbeSample, Probes, StageEndReason, StageLog};
+use crate::resources::{BlockLog, ProbeSample, Probes, StageEndReason, StageLog};
 use crate::scene::{Scene, SceneError};
 use crate::{Simulation, StepError};
 use std::path::{Path, PathBuf};
@@ -563,6 +563,24 @@ pub fn at_cell(base: &Scene, factor: Real) -> Scene {
         block.contact.tangential_stiffness *= factor;
     }
     scene
+}
+
+/// For a block pressed down (a punch, a footing), at each of its samples:
+/// how far it has sunk since its first sample (m) and its vertical
+/// reaction (N per metre, or per radian in axisymmetry); `what` names the
+/// block in the error when it was never sampled.
+pub fn pressed_block(sim: &Simulation, what: &str) -> Result<Vec<(Real, Real)>, VerifyError> {
+    let log = sim.world().resource::<BlockLog>();
+    let start = log
+        .samples
+        .first()
+        .ok_or_else(|| VerifyError::Measurement(format!("the {what} was never sampled")))?
+        .origin;
+    Ok(log
+        .samples
+        .iter()
+        .map(|s| (start.y - s.origin.y, s.force.y))
+        .collect())
 }
 
 /// `value` as a signed percentage with `decimals` decimals, e.g. "+1.25%".

@@ -14,7 +14,6 @@ use super::punch_elements::PunchCylinder;
 use super::{Check, Context, Curve, Figure, Measured, VerifyError, percent};
 use crate::Simulation;
 use crate::math::Real;
-use crate::resources::BlockLog;
 use std::f64::consts::PI;
 
 /// Punch radius a (m), cylinder radius and height (m), Young's modulus
@@ -43,16 +42,9 @@ pub fn sneddon() -> Real {
 /// squares slope of F against δ over the samples of the stroke's second
 /// half.
 pub fn stiffness(sim: &Simulation) -> Result<Real, VerifyError> {
-    let log = sim.world().resource::<BlockLog>();
-    let start = log
-        .samples
-        .first()
-        .ok_or_else(|| VerifyError::Measurement("the punch was never sampled".into()))?
-        .origin;
-    let samples: Vec<(Real, Real)> = log
-        .samples
-        .iter()
-        .map(|s| (start.y - s.origin.y, 2.0 * PI * s.force.y))
+    let samples: Vec<(Real, Real)> = super::pressed_block(sim, "punch")?
+        .into_iter()
+        .map(|(sunk, force)| (sunk, 2.0 * PI * force))
         .collect();
     let stroke = samples.iter().map(|s| s.0).fold(0.0, Real::max);
     let late: Vec<(Real, Real)> = samples
