@@ -14,6 +14,7 @@ const STEPS: u64 = 100;
 const PINNED: &[(&str, u64)] = &[
     ("axisymmetric_punch.ron", 0xff890d8a07e8fa7a),
     ("block_on_ground.ron", 0x1c6910f25cb1b279),
+    ("circular_footing.ron", 0xabf87e049d380849),
     ("column_collapse.ron", 0x1128b0038a36ed70),
     ("dam_break.ron", 0xaaf9972e19b2ab4c),
     ("elastic_column.ron", 0x1b825400700f46b5),

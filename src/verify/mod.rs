@@ -25,6 +25,7 @@ pub mod report;
 pub mod rings;
 pub mod sliding;
 pub mod stacked_blocks;
+pub mod stress_characteristics;
 pub mod toppling;
 pub mod wave;
 
@@ -253,9 +254,16 @@ pub const CASES: &[Case] = &[
     Case {
         name: "strip_footing",
         source: "Prandtl 1920, Reissner 1924",
-        about: "smooth rigid strip footing on a weightless frictional soil under a surcharge: collapse load at two cells against N_q",
-        minutes: 3.0,
-        run: footing::run,
+        about: "smooth rigid strip footing on a weightless frictional soil under a surcharge: collapse load at three cells against N_q",
+        minutes: 3.5,
+        run: footing::run_strip,
+    },
+    Case {
+        name: "circular_footing",
+        source: "Cox, Eason and Hopkins 1961 (stress characteristics)",
+        about: "smooth rigid circular footing on a weightless frictional soil under a surcharge, as a body of revolution: collapse load at three cells against N_q",
+        minutes: 6.0,
+        run: footing::run_circle,
     },
     Case {
         name: "two_rings",

@@ -34,6 +34,10 @@ versus numerical simulation, Appl. Ocean Res. 50 (2015) 192–208.
 6. L. Prandtl, Über die Härte plastischer Körper, Nachr. Ges. Wiss. Göttingen, Math.-Phys. Kl. \
 (1920) 74–85.
 7. H. Reissner, Zum Erddruckproblem, Proc. 1st Int. Congr. Appl. Mech., Delft (1924) 295–311.
+8. A. D. Cox, G. Eason, H. G. Hopkins, Axially symmetric plastic deformations in soils, Philos. Trans. R. Soc. \
+London A 254 (1961) 1–45.
+9. R. T. Shield, On the plastic flow of metals under conditions of axial symmetry, Proc. R. Soc. London A 233 \
+(1955) 267–287.
 ";
 
 /// Why the report could not be written.
