@@ -82,7 +82,8 @@ impl Footing {
 }
 
 /// The settlements s/B over which the pressure is averaged: past the
-/// collapse (at about 0.04 at both cells), short of the heave's largest.
+/// strip's collapse (at about 0.04 at B/10 and B/20), short of the heave's
+/// largest; the circle is averaged over the same stretch.
 const PLATEAU: (Real, Real) = (0.05, 0.08);
 
 /// Prandtl's bearing capacity factor N_q of a weightless soil.
@@ -127,7 +128,8 @@ pub fn plateau(curve: &[(Real, Real)]) -> Result<Real, VerifyError> {
 
 /// Richardson's extrapolation at the order the values themselves show: from
 /// P at cells 4h, 2h and h, the order n = log2((P_4h − P_2h) / (P_2h − P_h))
-/// and the limit P_h − (P_2h − P_h) / (2^n − 1).
+/// and the limit P_h − (P_2h − P_h) / (2^n − 1); both NaN when the three do
+/// not change monotonically.
 pub fn observed_order_limit(coarsest: Real, coarse: Real, fine: Real) -> (Real, Real) {
     let order = ((coarsest - coarse) / (coarse - fine)).log2();
     (order, fine - (coarse - fine) / (order.exp2() - 1.0))
