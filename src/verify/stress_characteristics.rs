@@ -22,7 +22,7 @@
 
 use crate::geometry::Geometry;
 use crate::math::Real;
-use std::f64::consts::FRAC_PI_2;
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
 
 /// A node of the net: its position (the footing's edge at x = 1, y = 0)
 /// and its stress state (p, ψ).
@@ -134,7 +134,7 @@ pub fn smooth_footing_nq(
     let phi = friction_angle_degrees.to_radians();
     let soil = Soil {
         tan_phi: phi.tan(),
-        mu: std::f64::consts::FRAC_PI_4 - phi / 2.0,
+        mu: FRAC_PI_4 - phi / 2.0,
         axisymmetric: geometry == Geometry::Axisymmetric,
     };
     let step = 0.25 / fan_rays as Real;
@@ -173,15 +173,14 @@ pub fn smooth_footing_nq(
         }
         let reached = soil.on_base(current.last().expect("one node"));
         current.push(reached);
-        let last = *base.last().expect("the edge");
+        let stress = reached.p * (1.0 + phi.sin());
         if reached.x <= 0.5 * step {
             // The axis: σ_y carried to x = 0 along the last stretch.
-            let stress = reached.p * (1.0 + phi.sin());
-            let at_axis = last.1 + (stress - last.1) * (0.0 - last.0) / (reached.x - last.0);
-            base.push((0.0, at_axis));
+            let (x0, s0) = *base.last().expect("the edge");
+            base.push((0.0, s0 - (stress - s0) * x0 / (reached.x - x0)));
             break;
         }
-        base.push((reached.x, reached.p * (1.0 + phi.sin())));
+        base.push((reached.x, stress));
         previous = current;
     }
     let (mut load, mut area) = (0.0, 0.0);
