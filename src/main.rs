@@ -414,6 +414,9 @@ fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
             Some(_) => format!("at most {}", p.length),
             None => p.length.to_string(),
         };
+        for w in p.warnings {
+            bar.suspend(|| say_err(&format!("warning: {w}")));
+        }
         let message = format!("step {}/{of} t = {:.4e} s{stage}", p.step, p.time);
         bar.set_length(p.length);
         bar.set_position(p.step);

@@ -21,6 +21,7 @@ use crate::math::Real;
 use crate::resources::{StageLog, StagePlan};
 use crate::scene::{Scene, SceneError, whole_steps};
 use crate::simulation::Simulation;
+use std::cell::Cell;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -176,6 +177,9 @@ pub struct Progress<'a> {
     pub stage: Option<&'a str>,
     /// Wall time since the run started.
     pub elapsed: Duration,
+    /// Warnings the run found while stepping since the last report (see
+    /// [`Simulation::step_warnings`]); a new one brings a report forward.
+    pub warnings: &'a [String],
 }
 
 /// What a finished run reached.
@@ -312,15 +316,20 @@ impl Runner {
             .checkpoint_every
             .map(|t| whole_steps(t, clock.dt));
         let total = clock.total_steps();
+        // Step warnings already reported.
+        let reported = Cell::new(0);
         let report = |sim: &Simulation, progress: &mut dyn FnMut(&Progress)| {
             let clock = sim.clock();
             let (stage, length) = stage_and_length(sim, total);
+            let warnings = &sim.step_warnings()[reported.get()..];
+            reported.set(reported.get() + warnings.len());
             progress(&Progress {
                 step: clock.step,
                 length,
                 time: clock.time,
                 stage,
                 elapsed: started.elapsed(),
+                warnings,
             });
         };
         report(sim, &mut progress);
@@ -347,7 +356,10 @@ impl Runner {
             if stop.load(Ordering::SeqCst) {
                 break;
             }
-            if now.step.is_multiple_of(64) || now.finished() {
+            if now.step.is_multiple_of(64)
+                || now.finished()
+                || sim.step_warnings().len() > reported.get()
+            {
                 report(sim, &mut progress);
             }
         }

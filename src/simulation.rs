@@ -209,6 +209,12 @@ impl Simulation {
         &self.registries.warnings
     }
 
+    /// Warnings found while stepping, in the order found (e.g. a point
+    /// grown too loose for the time step); the run goes on after them.
+    pub fn step_warnings(&self) -> &[String] {
+        &self.world.resource::<Diagnostics>().warnings
+    }
+
     /// The index in the scene's `stages` of the stage running, if the scene
     /// has stages and the last has not ended.
     pub fn stage_index(&self) -> Option<usize> {

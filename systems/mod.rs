@@ -15,6 +15,7 @@ mod diagnostics;
 mod grid_reset;
 mod grid_to_particle;
 mod load_work;
+mod loose_points;
 mod neighbours;
 mod nodal_solve;
 mod particle_to_grid;
@@ -34,6 +35,7 @@ pub(crate) use diagnostics::{
 pub(crate) use grid_reset::reset_grid_layers;
 pub(crate) use grid_to_particle::grid_to_particle;
 pub(crate) use load_work::account_load_work;
+pub(crate) use loose_points::check_loose_points;
 pub(crate) use neighbours::rebuild_neighbour_lists;
 pub(crate) use nodal_solve::solve_nodal_momentum;
 pub(crate) use particle_to_grid::particle_to_grid;

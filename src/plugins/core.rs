@@ -15,8 +15,9 @@ use crate::scene::{
     undamped_contact_warning,
 };
 use crate::systems::{
-    DiagnosticsStep, MpmSystems, advance_clock, check_finite, grid_to_particle, particle_to_grid,
-    rebuild_node_constraints, reset_grid_layers, solve_nodal_momentum, update_stress,
+    DiagnosticsStep, MpmSystems, advance_clock, check_finite, check_loose_points, grid_to_particle,
+    particle_to_grid, rebuild_node_constraints, reset_grid_layers, solve_nodal_momentum,
+    update_stress,
 };
 use bevy_ecs::prelude::*;
 
@@ -67,6 +68,9 @@ impl MpmPlugin for CorePlugin {
             solve_nodal_momentum.in_set(MpmSystems::NodalSolve),
             grid_to_particle.in_set(MpmSystems::GridToParticle),
             check_finite.in_set(DiagnosticsStep::CheckFinite),
+            check_loose_points
+                .in_set(DiagnosticsStep::CheckFinite)
+                .after(check_finite),
             advance_clock.in_set(DiagnosticsStep::Clock),
         ));
     }

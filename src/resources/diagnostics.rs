@@ -27,6 +27,9 @@ pub struct NumericalFailure {
 pub struct Diagnostics {
     /// The first numerical failure, if any.
     pub failure: Option<NumericalFailure>,
+    /// Warnings found while stepping, in the order found (e.g. a point too
+    /// loose for the time step); the run goes on.
+    pub warnings: Vec<String>,
 }
 
 impl Diagnostics {
