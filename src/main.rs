@@ -420,6 +420,10 @@ fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
         let message = format!("step {}/{of} t = {:.4e} s{stage}", p.step, p.time);
         bar.set_length(p.length);
         bar.set_position(p.step);
+        if p.step == p.first_step {
+            // A resumed run starts far along: its pace counts from here.
+            bar.reset_eta();
+        }
         bar.set_message(message.clone());
         let line = format!(
             "{message}, elapsed {}, ETA {}",
@@ -458,10 +462,9 @@ fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
 
 /// The time left at the run's mean pace so far, once it has one.
 fn eta(p: &Progress) -> Option<Duration> {
-    (p.step > 0 && p.length > p.step).then(|| {
-        p.elapsed
-            .mul_f64((p.length - p.step) as f64 / p.step as f64)
-    })
+    let taken = p.step.saturating_sub(p.first_step);
+    (taken > 0 && p.length > p.step)
+        .then(|| p.elapsed.mul_f64((p.length - p.step) as f64 / taken as f64))
 }
 
 /// A duration as h:mm:ss.
@@ -719,5 +722,29 @@ fn verify(names: &[String], places: VerifyPlaces, quiet: bool) -> Result<(), Fai
             missed,
             failed: failed.into_iter().map(String::from).collect(),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_resumed_runs_eta_counts_its_own_steps_only() {
+        // Resumed at step 900 of 2000: 100 steps in 10 s leave 1000 steps,
+        // 100 s; counting the checkpoint's 900 steps too would say 11 s.
+        let p = Progress {
+            step: 1000,
+            first_step: 900,
+            length: 2000,
+            time: 0.1,
+            stage: None,
+            elapsed: Duration::from_secs(10),
+            warnings: &[],
+        };
+        assert_eq!(eta(&p), Some(Duration::from_secs(100)));
+        // Nothing taken yet: no pace.
+        let at_start = Progress { step: 900, ..p };
+        assert_eq!(eta(&at_start), None);
     }
 }

@@ -168,6 +168,9 @@ pub enum RunError {
 pub struct Progress<'a> {
     /// Steps taken.
     pub step: u64,
+    /// The step this run started from: 0, or the checkpoint's step after a
+    /// resume (the pace of the run counts the steps from it).
+    pub first_step: u64,
     /// The most steps the run can take: the scene's, or fewer when stages
     /// may end it before `time.end` (each at its `Duration` or `max_time`).
     pub length: u64,
@@ -316,6 +319,7 @@ impl Runner {
             .checkpoint_every
             .map(|t| whole_steps(t, clock.dt));
         let total = clock.total_steps();
+        let first_step = clock.step;
         // Step warnings already reported.
         let reported = Cell::new(0);
         let report = |sim: &Simulation, progress: &mut dyn FnMut(&Progress)| {
@@ -325,6 +329,7 @@ impl Runner {
             reported.set(reported.get() + warnings.len());
             progress(&Progress {
                 step: clock.step,
+                first_step,
                 length,
                 time: clock.time,
                 stage,
