@@ -408,14 +408,21 @@ fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
     let mut last_line: Option<Instant> = None;
     // The latest report not yet logged, logged when the run ends.
     let mut unlogged: Option<String> = None;
+    let mut notices_shown = 0;
     let result = runner.run(&stop, |p| {
         let stage = p.stage.map_or(String::new(), |s| format!(", stage '{s}'"));
         let of = match p.stage {
             Some(_) => format!("at most {}", p.length),
             None => p.length.to_string(),
         };
-        for w in p.warnings {
-            bar.suspend(|| say_err(&format!("warning: {w}")));
+        notices_shown += p.notices.len();
+        for line in p
+            .notices
+            .iter()
+            .cloned()
+            .chain(p.warnings.iter().map(|w| format!("warning: {w}")))
+        {
+            bar.suspend(|| say_err(&line));
         }
         let message = format!("step {}/{of} t = {:.4e} s{stage}", p.step, p.time);
         bar.set_length(p.length);
@@ -443,7 +450,7 @@ fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
     if let Some(line) = unlogged.filter(|_| log_lines) {
         say_err(&line);
     }
-    for notice in runner.notices() {
+    for notice in &runner.notices()[notices_shown..] {
         say_err(notice);
     }
     match result {
@@ -740,6 +747,7 @@ mod tests {
             time: 0.1,
             stage: None,
             elapsed: Duration::from_secs(10),
+            notices: &[],
             warnings: &[],
         };
         assert_eq!(eta(&p), Some(Duration::from_secs(100)));

@@ -180,6 +180,10 @@ pub struct Progress<'a> {
     pub stage: Option<&'a str>,
     /// Wall time since the run started.
     pub elapsed: Duration,
+    /// What the run says as it opens its output, with the first report:
+    /// where it resumed, the files of an earlier run it removed, gaps in
+    /// resumed frames (see [`Runner::notices`]); empty afterwards.
+    pub notices: &'a [String],
     /// Warnings the run found while stepping since the last report (see
     /// [`Simulation::step_warnings`]); a new one brings a report forward.
     pub warnings: &'a [String],
@@ -320,11 +324,14 @@ impl Runner {
             .map(|t| whole_steps(t, clock.dt));
         let total = clock.total_steps();
         let first_step = clock.step;
-        // Step warnings already reported.
+        // Step warnings already reported; the opening's notices go with
+        // the first report.
         let reported = Cell::new(0);
+        let opening = Cell::new(&self.notices[..]);
         let report = |sim: &Simulation, progress: &mut dyn FnMut(&Progress)| {
             let clock = sim.clock();
             let (stage, length) = stage_and_length(sim, total);
+            let notices = opening.take();
             let warnings = &sim.step_warnings()[reported.get()..];
             reported.set(reported.get() + warnings.len());
             progress(&Progress {
@@ -334,6 +341,7 @@ impl Runner {
                 time: clock.time,
                 stage,
                 elapsed: started.elapsed(),
+                notices,
                 warnings,
             });
         };

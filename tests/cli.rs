@@ -288,11 +288,24 @@ fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outp
         .open(resumed.join("vtk/points_00000.vtu"))
         .and_then(|f| f.set_modified(written - std::time::Duration::from_secs(60)))
         .unwrap();
-    let resumed_run = run(&long, &resumed, &["--resume"]);
+    // Not quiet: the progress lines go to the log that standard error is.
+    let resumed_run = mpdem(&[
+        "run",
+        long.to_str().unwrap(),
+        "--out",
+        resumed.to_str().unwrap(),
+        "--resume",
+    ]);
     let stderr = String::from_utf8_lossy(&resumed_run.stderr);
     assert!(
         !stderr.contains("written after the checkpoint"),
         "the frames up to the checkpoint are whole: {stderr}"
+    );
+    // Where it resumed is said first, before the first progress line.
+    assert!(
+        stderr.starts_with("resuming at step 550 (t = 5.500000e-2 s)")
+            && stderr.contains("\nstep 550/800 t = 5.5000e-2 s"),
+        "{stderr}"
     );
     let resumed_hash = printed_hash(&resumed_run);
     let straight_hash = printed_hash(&run(&long, &straight, &[]));
