@@ -19,9 +19,9 @@ use rayon::prelude::*;
 
 /// Steps between two checks: a volume grows over many steps, and a pass
 /// over the points every step would cost a few percent of the run.
-pub const LOOSE_POINT_CHECK_EVERY: u64 = 64;
+const LOOSE_POINT_CHECK_EVERY: u64 = 64;
 
-/// Every [`LOOSE_POINT_CHECK_EVERY`] steps, for each body (in scene order)
+/// Every `LOOSE_POINT_CHECK_EVERY` steps (after a step that did not fail), for each body (in scene order)
 /// not warned yet: its loosest point that carries stress, and a warning in
 /// `Diagnostics::warnings` if Δt exceeds that point's stable step
 /// h / (c √(V/V⁰)). Points with zero stress (disconnected, or at a
@@ -37,11 +37,12 @@ pub fn check_loose_points(
     mut warned: Local<Vec<Entity>>,
     bodies: Query<(Entity, &BodyIndex, &BodyName, &MaterialPoints, &Material)>,
 ) {
-    if !clock.step.is_multiple_of(LOOSE_POINT_CHECK_EVERY) {
+    // A failed step's state may hold NaNs; its failure is what to say.
+    if !clock.step.is_multiple_of(LOOSE_POINT_CHECK_EVERY) || diagnostics.failure.is_some() {
         return;
     }
     sort_into_scene_order(&mut order, bodies.iter().map(|(e, i, ..)| (*i, e)));
-    for (entity, _) in order.iter().map(|(i, e)| (*e, *i)) {
+    for &(_, entity) in order.iter() {
         if warned.contains(&entity) {
             continue;
         }
@@ -71,14 +72,14 @@ pub fn check_loose_points(
 /// The largest volume ratio V/V⁰ at which a point of wave speed
 /// `wave_speed` (m/s) is stable with step `dt` on cells of size `cell`:
 /// (h / (c Δt))². `None` for a material without a positive, finite speed.
-pub fn loosest_stable_ratio(cell: Real, wave_speed: Real, dt: Real) -> Option<Real> {
+fn loosest_stable_ratio(cell: Real, wave_speed: Real, dt: Real) -> Option<Real> {
     (wave_speed.is_finite() && wave_speed > 0.0).then(|| (cell / (wave_speed * dt)).powi(2))
 }
 
 /// The largest V/V⁰ among the points whose stress is not zero, and the
 /// first point that has it; `None` if no point carries stress. A maximum
 /// with ties to the lowest index, so the same for any thread count.
-pub fn loosest_stressed_point(points: &MaterialPoints) -> Option<(Real, usize)> {
+fn loosest_stressed_point(points: &MaterialPoints) -> Option<(Real, usize)> {
     let better = |a: (Real, usize), b: (Real, usize)| {
         if b.0 > a.0 || (b.0 == a.0 && b.1 < a.1) {
             b

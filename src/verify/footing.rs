@@ -109,7 +109,8 @@ pub fn pressure_curve(
         .collect())
 }
 
-/// The mean of (p + q) / q over the settlements of [`PLATEAU`].
+/// The mean of (p + q) / q over the settlements s/B 0.05–0.08, past the
+/// strip's collapse and short of the heave's largest.
 pub fn plateau(curve: &[(Real, Real)]) -> Result<Real, VerifyError> {
     let inside: Vec<Real> = curve
         .iter()
