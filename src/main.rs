@@ -98,7 +98,7 @@ enum Command {
     /// Run the paper's validation cases at full size and measure each
     /// against its target (the table is also written to OUT/verify.csv;
     /// with --report, a Markdown report with figures too). Exits with
-    /// failure if a target is missed. All cases take about an hour on 2
+    /// failure if a target is missed. All cases take about an hour and a half on 2
     /// cores.
     Verify {
         /// Cases to run, by name [default: all]; see --list.

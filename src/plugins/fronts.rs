@@ -65,7 +65,7 @@ impl FrontLog {
 
 /// The largest of `xs` and the value beyond which a share [`AHEAD`] of
 /// them lie (NaN for none); reorders `xs`.
-fn fronts(xs: &mut [Real]) -> (Real, Real) {
+pub(crate) fn fronts(xs: &mut [Real]) -> (Real, Real) {
     let Some(last) = xs.len().checked_sub(1) else {
         return (Real::NAN, Real::NAN);
     };

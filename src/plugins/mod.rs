@@ -14,6 +14,7 @@ mod stages;
 use body_contact::BodyContactPlugin;
 use core::CorePlugin;
 use fronts::FrontsPlugin;
+pub(crate) use fronts::fronts;
 pub use fronts::{FrontLog, FrontSample};
 use records::RecordsPlugin;
 use rigid_blocks::RigidBlocksPlugin;

@@ -38,6 +38,10 @@ versus numerical simulation, Appl. Ocean Res. 50 (2015) 192–208.
 London A 254 (1961) 1–45.
 9. R. T. Shield, On the plastic flow of metals under conditions of axial symmetry, Proc. R. Soc. London A 233 \
 (1955) 267–287.
+10. N. J. Balmforth, R. R. Kerswell, Granular collapse in two dimensions, J. Fluid Mech. 538 (2005) \
+399–428.
+11. Y. Shi, N. Guo, Z. Yang, GeoTaichi: A Taichi-powered high-performance numerical simulator for \
+multiscale geophysical problems, Comput. Phys. Commun. 301 (2024) 109219.
 ";
 
 /// Why the report could not be written.

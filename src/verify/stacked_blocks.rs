@@ -8,14 +8,15 @@
 //! block 2's rotation as `block_2_rotation.csv`; the front is the scene's
 //! `fronts` record.
 
-use super::{Check, Context, Curve, Figure, Measured, VerifyError, body, largest, percent};
+use super::{
+    Check, Context, Curve, Figure, Measured, VerifyError, body, largest, percent, write_csv,
+};
 use crate::Simulation;
 use crate::components::{BlockContacts, BlockId, MaterialPoints, Pose, RigidShape};
 use crate::contact::disk_shape_contact;
 use crate::math::Real;
 use crate::plugins::FrontLog;
 use crate::resources::{BlockLog, BlockSample, EnergyLog};
-use std::path::Path;
 
 /// The blocks of the stack, bottom to top.
 const STACK: [&str; 3] = ["block_1", "block_2", "block_3"];
@@ -110,17 +111,6 @@ fn lowest_and_leftmost(sim: &mut Simulation, name: &str) -> Option<(Real, Real)>
             let aabb = shape.0.compute_aabb(&pose.to_parry());
             (aabb.mins.y, aabb.mins.x)
         })
-}
-
-/// Writes `rows` under `header` as `dir/file`.
-fn write_csv(dir: &Path, file: &str, header: &str, rows: &[String]) -> Result<(), VerifyError> {
-    let path = dir.join(file);
-    let text = std::iter::once(header.to_string())
-        .chain(rows.iter().cloned())
-        .collect::<Vec<_>>()
-        .join("\n")
-        + "\n";
-    std::fs::write(&path, text).map_err(|source| VerifyError::Io { path, source })
 }
 
 /// The scene to 0.6 s on the caller's threads, then again on one thread
