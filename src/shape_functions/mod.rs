@@ -27,6 +27,18 @@ pub(crate) trait Kernel: Copy + Send + Sync {
     /// half-size `half` = l/h and its inverse `inv_half` (GIMP only; the
     /// inverse is passed so the hot loop does no division).
     fn eval(&self, xi: Real, half: Real, inv_half: Real) -> (Real, Real);
+
+    /// Weights and derivatives at a point's three nodes, ξ0 from the first
+    /// (in [½, 3⁄2), or a rounding below ½): `eval` at ξ0, ξ0 − 1 and
+    /// ξ0 − 2. A kernel may give them from what it knows of each node's
+    /// side of the point.
+    #[inline(always)]
+    fn eval_three(&self, xi0: Real, half: Real, inv_half: Real) -> ([Real; 3], [Real; 3]) {
+        let (w0, g0) = self.eval(xi0, half, inv_half);
+        let (w1, g1) = self.eval(xi0 - 1.0, half, inv_half);
+        let (w2, g2) = self.eval(xi0 - 2.0, half, inv_half);
+        ([w0, w1, w2], [g0, g1, g2])
+    }
 }
 
 /// The shape function chosen for a simulation (scene `settings.shape_function`).
@@ -248,10 +260,13 @@ impl Stencil {
         mut acc: A,
         mut f: impl FnMut(A, &T, Real, DVec2) -> A,
     ) -> A {
+        let start = at + y0 * row_len + x0;
+        assert_block_inside::<NX, NY>(start, row_len, values.len());
         for j in 0..NY {
             let b = y0 + j;
-            let first = at + b * row_len + x0;
-            let row: &[T; NX] = values[first..first + NX].try_into().unwrap();
+            // SAFETY: the NX values from `start + j row_len` lie in `values`
+            // for every j < NY (asserted above).
+            let row = unsafe { &*values.as_ptr().add(start + j * row_len).cast::<[T; NX]>() };
             for (i, value) in row.iter().enumerate() {
                 let (wx, gx) = (self.wx[x0 + i], self.gx[x0 + i]);
                 acc = f(
@@ -308,10 +323,17 @@ impl Stencil {
         row_len: usize,
         mut f: impl FnMut(&mut T, Real, DVec2, [usize; 2]),
     ) {
+        let start = at + y0 * row_len + x0;
+        assert_block_inside::<NX, NY>(start, row_len, values.len());
         for j in 0..NY {
             let b = y0 + j;
-            let first = at + b * row_len + x0;
-            let row: &mut [T; NX] = (&mut values[first..first + NX]).try_into().unwrap();
+            // SAFETY: as in `gather_block`; the rows do not overlap (NX ≤ row_len).
+            let row = unsafe {
+                &mut *values
+                    .as_mut_ptr()
+                    .add(start + j * row_len)
+                    .cast::<[T; NX]>()
+            };
             for (i, value) in row.iter_mut().enumerate() {
                 let a = x0 + i;
                 let (wx, gx) = (self.wx[a], self.gx[a]);
@@ -324,6 +346,31 @@ impl Stencil {
             }
         }
     }
+}
+
+/// Panics unless NY rows of NX values, `row_len` apart, the first at
+/// `start`, lie in a field of `len` values (and NX ≤ `row_len`, so that the
+/// rows do not overlap). One check per block lets the transfers read and
+/// write its rows without a bounds check per row, which cost a tenth of the
+/// step's instructions.
+#[inline(always)]
+fn assert_block_inside<const NX: usize, const NY: usize>(start: usize, row_len: usize, len: usize) {
+    let end = (NY - 1)
+        .checked_mul(row_len)
+        .and_then(|rows| rows.checked_add(start))
+        .and_then(|last_row| last_row.checked_add(NX));
+    if NX > row_len || end.is_none_or(|end| end > len) {
+        block_outside(NX, NY, start, row_len, len);
+    }
+}
+
+/// The panic of [`assert_block_inside`], out of the transfers' loops.
+#[cold]
+#[inline(never)]
+fn block_outside(nx: usize, ny: usize, start: usize, row_len: usize, len: usize) -> ! {
+    panic!(
+        "a stencil's {nx} × {ny} nodes from place {start} (rows of {row_len}) reach past its {len} values"
+    )
 }
 
 /// Of an axis's three nodes, the first whose weight or derivative is not
@@ -372,14 +419,19 @@ fn axis<K: Kernel>(
         }
     }
     let base = first.clamp(0, last_node - 2);
+    if base == first {
+        // ξ0 = s − first is exact (both are multiples of s's last place, and
+        // |s − first| ≤ s), and so are ξ0 − 1 and ξ0 − 2 wherever
+        // s − (first + k) is: the same values as `eval(first + k)`.
+        let (weights, derivatives) = kernel.eval_three(s - first as Real, half, inv_half);
+        return Some((base as u32, weights, derivatives));
+    }
     let mut weights = [0.0; 3];
     let mut derivatives = [0.0; 3];
     for k in 0..3 {
         (weights[k], derivatives[k]) = eval(base + k as i64);
     }
-    if base != first {
-        restrict_to_grid(&mut weights, &mut derivatives);
-    }
+    restrict_to_grid(&mut weights, &mut derivatives);
     Some((base as u32, weights, derivatives))
 }
 
@@ -545,6 +597,56 @@ mod tests {
                         "{kind:?} at {p}: {fd} vs {}",
                         st.gx[a]
                     );
+                }
+            }
+        }
+    }
+
+    /// A stencil inside the grid holds each kernel's `eval` at s − node for
+    /// its three nodes, bit for bit, also just below and above powers of
+    /// two, where s + ½ and s have different last places (just below s = ½,
+    /// s + ½ rounds up to 1 and ξ0 = s < ½).
+    #[test]
+    fn interior_stencils_hold_eval_at_each_node() {
+        // Unit cells, so that a place in cells is the position itself.
+        let grid = StencilGrid {
+            nodes: [2100, 2100],
+            inv_cell_size: 1.0,
+            ..OPEN
+        };
+        let mut places: Vec<Real> = (0..4000).map(|k| 0.7 + k as Real * 0.0123).collect();
+        for power in [1.0, 2.0, 4.0, 1024.0] {
+            for at in [power - 0.5, power] {
+                let below = Real::from_bits(Real::to_bits(at) - 1);
+                places.extend([below, at, Real::from_bits(Real::to_bits(at) + 1)]);
+            }
+        }
+        // The cell coordinate and half-size as `Stencil::new` forms them.
+        let inv_h = grid.inv_cell_size;
+        for half in [0.25, 0.5] {
+            let (half_cells, domain) = (half * inv_h, DVec2::splat(half));
+            let inv_half = 1.0 / half_cells;
+            for &s in &places {
+                let x = DVec2::new(s, 1.0);
+                let cells = (x.x - grid.origin.x) * inv_h;
+                for kind in KINDS {
+                    let st = kind.stencil(x, domain, &grid).unwrap();
+                    for k in 0..3 {
+                        let xi = cells - (st.base[0] as usize + k) as Real;
+                        let (w, g) = match kind {
+                            ShapeFunction::Linear => LinearHat.eval(xi, half_cells, inv_half),
+                            ShapeFunction::UGimp => UGimp.eval(xi, half_cells, inv_half),
+                            ShapeFunction::QuadraticBSpline => {
+                                QuadraticBSpline.eval(xi, half_cells, inv_half)
+                            }
+                        };
+                        let (got, want) = ((st.wx[k], st.gx[k]), (w, g * inv_h));
+                        assert_eq!(
+                            (got.0.to_bits(), got.1.to_bits()),
+                            (want.0.to_bits(), want.1.to_bits()),
+                            "{kind:?} at s = {cells}, node {k}"
+                        );
+                    }
                 }
             }
         }
