@@ -75,12 +75,14 @@ fn all_finite(points: &MaterialPoints) -> bool {
         && all_in_chunks(&points.volume, |v| *v > 0.0)
 }
 
-/// Whether `ok` holds for every element: chunks in parallel, a plain loop
-/// inside each (rayon's per-element `all` checks a shared flag every item).
+/// Whether `ok` holds for every element: chunks in parallel, and inside each
+/// a fold that tests every element without stopping at the first failure,
+/// which the compiler turns into vector code (rayon's per-element `all`
+/// checks a shared flag every item, and a plain `all` branches on each).
 fn all_in_chunks<T: Sync>(column: &[T], ok: impl Fn(&T) -> bool + Sync) -> bool {
     column
         .par_chunks(MIN_POINTS_PER_TASK)
-        .all(|chunk| chunk.iter().all(&ok))
+        .all(|chunk| chunk.iter().fold(true, |all, x| all & ok(x)))
 }
 
 /// The first broken field of point `p` and what it holds, if any.
