@@ -409,23 +409,23 @@ fn axis<K: Kernel>(
     // truncation since s ≥ 0 (a call to `floor` costs more than the kernel).
     let first = (s + 0.5) as i64 - 1;
     let inv_half = 1.0 / half;
-    let eval = |node: i64| kernel.eval(s - node as Real, half, inv_half);
-    if first < 0 || first + 2 > last_node {
-        for node in first..first + 3 {
-            let beyond_open_edge = (node < 0 && !walls[0]) || (node > last_node && !walls[1]);
-            if beyond_open_edge && eval(node).0 > ROUND_OFF_WEIGHT {
-                return None;
-            }
-        }
-    }
-    let base = first.clamp(0, last_node - 2);
-    if base == first {
+    if first >= 0 && first + 2 <= last_node {
         // ξ0 = s − first is exact (both are multiples of s's last place, and
         // |s − first| ≤ s), and so are ξ0 − 1 and ξ0 − 2 wherever
         // s − (first + k) is: the same values as `eval(first + k)`.
         let (weights, derivatives) = kernel.eval_three(s - first as Real, half, inv_half);
-        return Some((base as u32, weights, derivatives));
+        return Some((first as u32, weights, derivatives));
     }
+    // Next to an edge: the nodes beyond it must have no weight, unless it
+    // is a wall, and the weights are those of the support inside the grid.
+    let eval = |node: i64| kernel.eval(s - node as Real, half, inv_half);
+    for node in first..first + 3 {
+        let beyond_open_edge = (node < 0 && !walls[0]) || (node > last_node && !walls[1]);
+        if beyond_open_edge && eval(node).0 > ROUND_OFF_WEIGHT {
+            return None;
+        }
+    }
+    let base = first.clamp(0, last_node - 2);
     let mut weights = [0.0; 3];
     let mut derivatives = [0.0; 3];
     for k in 0..3 {
