@@ -43,6 +43,9 @@ pub struct ScatterOrder {
     rows: Vec<u32>,
     /// The layer's window the stencils lie in.
     window: NodeRect,
+    /// Per chunk of [`CHUNK_POINTS`] points in this order, the nodes its
+    /// stencils cover: the same for every scatter of the step.
+    patches: Vec<NodeRect>,
 }
 
 impl ScatterOrder {
@@ -51,6 +54,19 @@ impl ScatterOrder {
     /// stencils). Points already stored in row order, as in a body that has
     /// not flowed, cost one counting pass.
     pub fn sort_by_row(&mut self, stencils: &[Stencil], window: NodeRect) {
+        self.sort_points(stencils, window);
+        let chunks = self.points.len().div_ceil(CHUNK_POINTS);
+        self.patches.resize(chunks, NodeRect::default());
+        self.patches
+            .par_iter_mut()
+            .zip(self.points.par_chunks(CHUNK_POINTS))
+            .for_each(|(patch, chunk)| {
+                *patch = covered_nodes(chunk.iter().map(|&p| &stencils[p as usize]));
+            });
+    }
+
+    /// The counting sort of [`Self::sort_by_row`].
+    fn sort_points(&mut self, stencils: &[Stencil], window: NodeRect) {
         self.window = window;
         let low = window.start[1] as u32;
         self.rows.clear();
@@ -131,19 +147,20 @@ impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
         per_node: impl Fn(&P, Real, DVec2, [usize; 2]) -> T + Sync,
     ) {
         let widest = order.window.width();
+        let covered = &order.patches;
         let order = order.points();
         assert_eq!(
             order.len(),
             stencils.len(),
             "the scatter order was sorted for other stencils"
         );
-        let chunks = order.len().div_ceil(CHUNK_POINTS);
-        self.patches.resize_with(chunks, Patch::default);
+        self.patches.resize_with(covered.len(), Patch::default);
         self.patches
             .par_iter_mut()
             .zip(order.par_chunks(CHUNK_POINTS))
-            .for_each(|(patch, chunk)| {
-                patch.cover(chunk.iter().map(|&p| &stencils[p as usize]), widest);
+            .zip(covered)
+            .for_each(|((patch, chunk), &nodes)| {
+                patch.cover(nodes, widest);
                 let origin = [patch.origin[0] as u32, patch.origin[1] as u32];
                 for &p in chunk {
                     let carried = per_point(p as usize);
@@ -203,26 +220,35 @@ impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
     }
 }
 
-impl<T: Copy + Default> Patch<T> {
-    /// Resizes and zeroes the patch to cover every node of `stencils`. A
-    /// patch that outgrows its buffer gets room for rows `widest` nodes long
-    /// (the layer window's width, which no patch exceeds): as a body spreads
-    /// sideways its patches widen, and they should not reallocate at each
-    /// widening. Room never written (a contact group's window can be much
-    /// wider than one body) takes address space, not memory: the system
-    /// gives a page only when it is first written.
-    fn cover<'a>(&mut self, stencils: impl Iterator<Item = &'a Stencil>, widest: usize) {
-        let mut lo = [u32::MAX; 2];
-        let mut hi = [0u32; 2];
-        for s in stencils {
-            for d in 0..2 {
-                lo[d] = lo[d].min(s.base[d]);
-                hi[d] = hi[d].max(s.base[d] + STENCIL_WIDTH as u32 - 1);
-            }
+/// The nodes that `stencils` (at least one) cover: the box around their
+/// 3 × 3 blocks.
+fn covered_nodes<'a>(stencils: impl Iterator<Item = &'a Stencil>) -> NodeRect {
+    let mut lo = [u32::MAX; 2];
+    let mut hi = [0u32; 2];
+    for s in stencils {
+        for d in 0..2 {
+            lo[d] = lo[d].min(s.base[d]);
+            hi[d] = hi[d].max(s.base[d] + STENCIL_WIDTH as u32);
         }
-        self.origin = [lo[0] as usize, lo[1] as usize];
-        self.width = (hi[0] - lo[0] + 1) as usize;
-        self.height = (hi[1] - lo[1] + 1) as usize;
+    }
+    NodeRect {
+        start: lo.map(|k| k as usize),
+        end: hi.map(|k| k as usize),
+    }
+}
+
+impl<T: Copy + Default> Patch<T> {
+    /// Resizes and zeroes the patch to cover `nodes`. A patch that outgrows
+    /// its buffer gets room for rows `widest` nodes long (the layer window's
+    /// width, which no patch exceeds): as a body spreads sideways its
+    /// patches widen, and they should not reallocate at each widening. Room
+    /// never written (a contact group's window can be much wider than one
+    /// body) takes address space, not memory: the system gives a page only
+    /// when it is first written.
+    fn cover(&mut self, nodes: NodeRect, widest: usize) {
+        self.origin = nodes.start;
+        self.width = nodes.width();
+        self.height = nodes.height();
         self.values.clear();
         let needed = self.width * self.height;
         if self.values.capacity() < needed {
