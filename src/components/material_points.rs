@@ -130,15 +130,17 @@ impl MaterialPoints {
     /// points, unbounded if a position is not finite (min and max are
     /// exact, so the result does not depend on the thread count).
     pub fn bounds(&self) -> Option<(DVec2, DVec2)> {
+        // Per chunk, a plain fold without branches (min and max pass a NaN
+        // by), then one test of whether every position was finite.
+        let unbounded = (DVec2::NEG_INFINITY, DVec2::INFINITY);
         self.position
-            .par_iter()
-            .with_min_len(CHUNK_POINTS)
-            .map(|&x| {
-                if x.is_finite() {
-                    (x, x)
-                } else {
-                    (DVec2::NEG_INFINITY, DVec2::INFINITY)
-                }
+            .par_chunks(CHUNK_POINTS)
+            .map(|chunk| {
+                let start = (DVec2::INFINITY, DVec2::NEG_INFINITY, true);
+                let (lo, hi, finite) = chunk.iter().fold(start, |(lo, hi, finite), x| {
+                    (lo.min(*x), hi.max(*x), finite & x.is_finite())
+                });
+                if finite { (lo, hi) } else { unbounded }
             })
             .reduce_with(|(lo, hi), (a, b)| (lo.min(a), hi.max(b)))
     }
@@ -253,4 +255,39 @@ impl MaterialPoints {
 #[inline]
 pub fn hoop_radius(position: DVec2, half_size: DVec2) -> Real {
     position.x.max(0.5 * half_size.x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The box is exact around finite points, spans more than one chunk,
+    /// and is unbounded as soon as one position is not finite.
+    #[test]
+    fn bounds_hold_every_point_or_none() {
+        let mut points = MaterialPoints::default();
+        assert_eq!(points.bounds(), None);
+        let n = 3 * CHUNK_POINTS + 7;
+        points.position = (0..n)
+            .map(|k| DVec2::new((k as Real * 0.37).sin(), k as Real * 1e-3 - 1.0))
+            .collect();
+        let lo = points
+            .position
+            .iter()
+            .fold(DVec2::INFINITY, |a, x| a.min(*x));
+        let hi = points
+            .position
+            .iter()
+            .fold(DVec2::NEG_INFINITY, |a, x| a.max(*x));
+        assert_eq!(points.bounds(), Some((lo, hi)));
+        for broken in [Real::NAN, Real::INFINITY] {
+            let mut bad = points.clone();
+            bad.position[2 * CHUNK_POINTS + 3].y = broken;
+            assert_eq!(
+                bad.bounds(),
+                Some((DVec2::NEG_INFINITY, DVec2::INFINITY)),
+                "{broken}"
+            );
+        }
+    }
 }
