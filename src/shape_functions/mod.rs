@@ -652,6 +652,31 @@ mod tests {
         }
     }
 
+    /// A field too short for a stencil's block is refused before any row is
+    /// read, in gathers and in scatters.
+    #[test]
+    fn a_block_past_its_field_is_refused() {
+        let st = ShapeFunction::UGimp
+            .stencil(DVec2::splat(0.55), DVec2::splat(H / 4.0), &OPEN)
+            .unwrap();
+        let field = vec![DVec2::ONE; NODES[0] * NODES[1]];
+        let inside = st.interpolate(&field, [0, 0], NODES[0]);
+        assert!((inside - DVec2::ONE).length() < TOL, "{inside}");
+        let short = &field[..(st.base[1] as usize + 1) * NODES[0]];
+        let gather = std::panic::catch_unwind(|| st.interpolate(short, [0, 0], NODES[0]));
+        let mut scatter_into = short.to_vec();
+        let scatter = std::panic::catch_unwind(move || {
+            st.scatter(&mut scatter_into, [0, 0], NODES[0], |v, w, _, _| *v *= w)
+        });
+        for outcome in [gather.map(|_| ()), scatter] {
+            let message = outcome.expect_err("a block past its field must be refused");
+            let text = message
+                .downcast_ref::<String>()
+                .expect("a formatted message");
+            assert!(text.contains("reach past"), "{text}");
+        }
+    }
+
     #[test]
     fn support_outside_the_grid_is_refused() {
         let half = DVec2::splat(H / 4.0);
