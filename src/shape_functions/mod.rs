@@ -247,6 +247,25 @@ impl Stencil {
         (self.base[0] - origin[0]) as usize + (self.base[1] - origin[1]) as usize * row_len
     }
 
+    /// The weights and derivatives along x of the N nodes from stencil node
+    /// `first`, checked once so that the loops over them need no check.
+    #[inline(always)]
+    fn reached_x<const N: usize>(&self, first: usize) -> (&[Real; N], &[Real; N]) {
+        (
+            self.wx[first..first + N].try_into().unwrap(),
+            self.gx[first..first + N].try_into().unwrap(),
+        )
+    }
+
+    /// [`Self::reached_x`] along y.
+    #[inline(always)]
+    fn reached_y<const N: usize>(&self, first: usize) -> (&[Real; N], &[Real; N]) {
+        (
+            self.wy[first..first + N].try_into().unwrap(),
+            self.gy[first..first + N].try_into().unwrap(),
+        )
+    }
+
     /// [`Self::gather`] over the NX × NY nodes from stencil node `start`,
     /// `at` the place of the stencil's node (0, 0) in `values`; fixed trip
     /// counts let the loops unroll. Any stencil may take the whole 3 × 3.
@@ -262,18 +281,19 @@ impl Stencil {
     ) -> A {
         let start = at + y0 * row_len + x0;
         assert_block_inside::<NX, NY>(start, row_len, values.len());
+        let (wxs, gxs) = self.reached_x::<NX>(x0);
+        let (wys, gys) = self.reached_y::<NY>(y0);
         for j in 0..NY {
-            let b = y0 + j;
             // SAFETY: the NX values from `start + j row_len` lie in `values`
             // for every j < NY (asserted above).
             let row = unsafe { &*values.as_ptr().add(start + j * row_len).cast::<[T; NX]>() };
             for (i, value) in row.iter().enumerate() {
-                let (wx, gx) = (self.wx[x0 + i], self.gx[x0 + i]);
+                let (wx, gx) = (wxs[i], gxs[i]);
                 acc = f(
                     acc,
                     value,
-                    wx * self.wy[b],
-                    DVec2::new(gx * self.wy[b], wx * self.gy[b]),
+                    wx * wys[j],
+                    DVec2::new(gx * wys[j], wx * gys[j]),
                 );
             }
         }
@@ -325,8 +345,9 @@ impl Stencil {
     ) {
         let start = at + y0 * row_len + x0;
         assert_block_inside::<NX, NY>(start, row_len, values.len());
+        let (wxs, gxs) = self.reached_x::<NX>(x0);
+        let (wys, gys) = self.reached_y::<NY>(y0);
         for j in 0..NY {
-            let b = y0 + j;
             // SAFETY: as in `gather_block`; the rows do not overlap (NX ≤ row_len).
             let row = unsafe {
                 &mut *values
@@ -335,13 +356,12 @@ impl Stencil {
                     .cast::<[T; NX]>()
             };
             for (i, value) in row.iter_mut().enumerate() {
-                let a = x0 + i;
-                let (wx, gx) = (self.wx[a], self.gx[a]);
+                let (wx, gx) = (wxs[i], gxs[i]);
                 f(
                     value,
-                    wx * self.wy[b],
-                    DVec2::new(gx * self.wy[b], wx * self.gy[b]),
-                    [a, b],
+                    wx * wys[j],
+                    DVec2::new(gx * wys[j], wx * gys[j]),
+                    [x0 + i, y0 + j],
                 );
             }
         }
