@@ -41,8 +41,8 @@ impl Kernel for UGimp {
     #[inline(always)]
     fn eval_three(&self, xi0: Real, half: Real, inv_half: Real) -> ([Real; 3], [Real; 3]) {
         // ξ0 falls short of ½ by a rounding only just below s = ½, where
-        // s + ½ rounds up to 1.
-        if half > 0.5 || xi0 < 0.5 {
+        // s + ½ rounds up to 1. (A NaN half-size takes the general path too.)
+        if half > 0.5 || half.is_nan() || xi0 < 0.5 {
             let (w0, g0) = self.eval(xi0, half, inv_half);
             let (w1, g1) = self.eval(xi0 - 1.0, half, inv_half);
             let (w2, g2) = self.eval(xi0 - 2.0, half, inv_half);
@@ -86,7 +86,7 @@ mod tests {
         let mut places: Vec<Real> = (0..=2000).map(|k| 0.5 + k as Real / 2000.0).collect();
         let below_half = Real::from_bits(Real::to_bits(0.5) - 1);
         places.extend([below_half, 1.5 - Real::EPSILON, 0.75, 1.25]);
-        for half in [0.125, 0.25, 0.5 / 3.0, 0.5, 0.6] {
+        for half in [0.125, 0.25, 0.5 / 3.0, 0.5, 0.6, Real::NAN] {
             let inv_half = 1.0 / half;
             for &xi0 in &places {
                 let (w, g) = UGimp.eval_three(xi0, half, inv_half);
