@@ -34,11 +34,22 @@ pub(crate) trait Kernel: Copy + Send + Sync {
     /// side of the point.
     #[inline(always)]
     fn eval_three(&self, xi0: Real, half: Real, inv_half: Real) -> ([Real; 3], [Real; 3]) {
-        let (w0, g0) = self.eval(xi0, half, inv_half);
-        let (w1, g1) = self.eval(xi0 - 1.0, half, inv_half);
-        let (w2, g2) = self.eval(xi0 - 2.0, half, inv_half);
-        ([w0, w1, w2], [g0, g1, g2])
+        eval_each(self, xi0, half, inv_half)
     }
+}
+
+/// [`Kernel::eval`] at ξ0, ξ0 − 1 and ξ0 − 2: the weights and derivatives.
+#[inline(always)]
+fn eval_each<K: Kernel>(
+    kernel: &K,
+    xi0: Real,
+    half: Real,
+    inv_half: Real,
+) -> ([Real; 3], [Real; 3]) {
+    let (w0, g0) = kernel.eval(xi0, half, inv_half);
+    let (w1, g1) = kernel.eval(xi0 - 1.0, half, inv_half);
+    let (w2, g2) = kernel.eval(xi0 - 2.0, half, inv_half);
+    ([w0, w1, w2], [g0, g1, g2])
 }
 
 /// The shape function chosen for a simulation (scene `settings.shape_function`).

@@ -2,7 +2,7 @@
 //! the hat function averaged over the point's domain [x_p − l, x_p + l]
 //! (paper eq. 9a), with l fixed at its initial value.
 
-use super::Kernel;
+use super::{Kernel, eval_each};
 use crate::math::Real;
 
 /// uGIMP weight S_ip and its derivative (eqs. 9a/9b) in cell units: ξ is the
@@ -43,10 +43,7 @@ impl Kernel for UGimp {
         // ξ0 falls short of ½ by a rounding only just below s = ½, where
         // s + ½ rounds up to 1. (A NaN half-size takes the general path too.)
         if half > 0.5 || half.is_nan() || xi0 < 0.5 {
-            let (w0, g0) = self.eval(xi0, half, inv_half);
-            let (w1, g1) = self.eval(xi0 - 1.0, half, inv_half);
-            let (w2, g2) = self.eval(xi0 - 2.0, half, inv_half);
-            return ([w0, w1, w2], [g0, g1, g2]);
+            return eval_each(self, xi0, half, inv_half);
         }
         // An outer node at distance r ≥ ½ from the point, `side` the sign of ξ.
         let outer = |r: Real, side: Real| {
