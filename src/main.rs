@@ -94,6 +94,10 @@ enum Command {
         /// [default: 5; not with --scene].
         #[arg(long, conflicts_with = "scene", value_parser = clap::value_parser!(u64).range(1..))]
         repeats: Option<u64>,
+        /// Also report the wall-clock time of each set of the step, per
+        /// step and as a share of the timed steps.
+        #[arg(long)]
+        by_set: bool,
     },
     /// Run the paper's validation cases at full size and measure each
     /// against its target (the table is also written to OUT/verify.csv;
@@ -161,14 +165,17 @@ fn main() -> ExitCode {
             scene,
             warmup,
             repeats,
-        } => with_threads(threads, || match scene {
-            Some(path) => bench_scene(&path, warmup, steps),
-            None => run_bench(
-                points as usize,
+            by_set,
+        } => with_threads(threads, || {
+            let timing = BenchTiming {
                 warmup,
                 steps,
-                repeats.unwrap_or(5) as usize,
-            ),
+                by_set,
+            };
+            match scene {
+                Some(path) => bench_scene(&path, timing),
+                None => run_bench(points as usize, timing, repeats.unwrap_or(5) as usize),
+            }
         }),
         Command::Verify {
             cases,
@@ -512,7 +519,53 @@ fn progress_bar(total: u64, quiet: bool, template: &str) -> ProgressBar {
     bar
 }
 
-fn bench_scene(path: &Path, warmup: u64, steps: u64) -> Result<(), Failure> {
+/// How a bench times its runs.
+#[derive(Clone, Copy)]
+struct BenchTiming {
+    /// Untimed steps first.
+    warmup: u64,
+    /// Timed steps.
+    steps: u64,
+    /// Also time each set of the step.
+    by_set: bool,
+}
+
+/// Steps `sim` through the warm-up, then starts the set timer if asked.
+fn warm_up(sim: &mut Simulation, timing: BenchTiming) -> Result<(), Failure> {
+    bench::measure(sim, timing.warmup, 0)?;
+    if timing.by_set {
+        bench::start_set_timer(sim)?;
+    }
+    Ok(())
+}
+
+/// The set timer's table for `sim`, over timed steps that took `seconds`
+/// in all; nothing if the timer is off.
+fn say_set_times(sim: &mut Simulation, steps: u64, seconds: f64) -> Result<(), Failure> {
+    let sets = bench::take_set_seconds(sim);
+    if sets.is_empty() {
+        return Ok(());
+    }
+    let per_step = |s: f64| 1e3 * s / steps as f64;
+    let share = |s: f64| 100.0 * s / seconds;
+    for (set, s) in &sets {
+        say(&format!(
+            "  {:<16} {:>9.3} ms/step {:>5.1}%",
+            format!("{set:?}"),
+            per_step(*s),
+            share(*s)
+        ))?;
+    }
+    let rest = seconds - sets.iter().map(|(_, s)| s).sum::<f64>();
+    say(&format!(
+        "  {:<16} {:>9.3} ms/step {:>5.1}%",
+        "between sets",
+        per_step(rest),
+        share(rest)
+    ))
+}
+
+fn bench_scene(path: &Path, timing: BenchTiming) -> Result<(), Failure> {
     let scene = Scene::load(path)?;
     let mut runs = vec![("", scene.clone())];
     if !scene.body_contacts.is_empty() {
@@ -522,21 +575,25 @@ fn bench_scene(path: &Path, warmup: u64, steps: u64) -> Result<(), Failure> {
     }
     for (label, scene) in runs {
         let mut sim = Simulation::from_scene(&scene)?;
-        let t = bench::measure(&mut sim, warmup, steps)?;
+        warm_up(&mut sim, timing)?;
+        let t = bench::measure(&mut sim, 0, timing.steps)?;
         say(&format!(
-            "{}{label}: {} points, {} steps after {warmup}, {}: {:.3} s, {:.2} M particle-updates/s",
+            "{}{label}: {} points, {} steps after {}, {}: {:.3} s, {:.2} M particle-updates/s",
             sim.name(),
             t.points,
             t.steps,
+            timing.warmup,
             bench::threads_label(),
             t.seconds,
             t.updates_per_second() / 1e6
         ))?;
+        say_set_times(&mut sim, t.steps, t.seconds)?;
     }
     Ok(())
 }
 
-fn run_bench(points: usize, warmup: u64, steps: u64, repeats: usize) -> Result<(), Failure> {
+fn run_bench(points: usize, timing: BenchTiming, repeats: usize) -> Result<(), Failure> {
+    let steps = timing.steps;
     let scenes = [
         (
             "elastic block on the grid's fixed base",
@@ -550,7 +607,7 @@ fn run_bench(points: usize, warmup: u64, steps: u64, repeats: usize) -> Result<(
     let mut sims = Vec::new();
     for (_, scene) in &scenes {
         let mut sim = Simulation::from_scene(scene)?;
-        bench::measure(&mut sim, warmup, 0)?;
+        warm_up(&mut sim, timing)?;
         sims.push(sim);
     }
     // The two blocks are timed in turn, so that a slow spell of the machine
@@ -573,6 +630,8 @@ fn run_bench(points: usize, warmup: u64, steps: u64, repeats: usize) -> Result<(
             (points_of[k] as f64 * steps as f64) / median / 1e6,
             100.0 * spread,
         ))?;
+        let all_steps = steps * repeats as u64;
+        say_set_times(&mut sims[k], all_steps, seconds[k].iter().sum())?;
     }
     let ratios: Vec<f64> = seconds[1]
         .iter()

@@ -1,5 +1,10 @@
 //! The standard throughput benchmark: an elastic block settling under
-//! gravity on a fixed base, sized by its number of points.
+//! gravity on a fixed base, sized by its number of points; and a timer of
+//! the step's sets.
+
+mod set_timer;
+
+pub use set_timer::{start_set_timer, take_set_seconds};
 
 use crate::contact::ContactLaw;
 use crate::materials::{LinearElastic, MaterialModel};
