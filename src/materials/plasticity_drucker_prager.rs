@@ -184,6 +184,7 @@ impl ElasticPlastic for PreparedDruckerPrager {
     /// Returns a trial stress to the admissible region (Huang et al. 2015
     /// for the corner): shear return along G, tension return along G_t, and
     /// the corner where both surfaces meet.
+    #[inline(always)]
     fn return_map(&self, trial: SymTensor) -> SymTensor {
         let Self {
             eta,
