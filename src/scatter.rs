@@ -49,46 +49,46 @@ pub struct ScatterOrder {
 }
 
 impl ScatterOrder {
-    /// Sorts the points of `stencils` by the row of their base node; every
-    /// stencil lies in `window` (a layer's window covers its points'
-    /// stencils). Points already stored in row order, as in a body that has
-    /// not flowed, cost one counting pass.
-    pub fn sort_by_row(&mut self, stencils: &[Stencil], window: NodeRect) {
-        self.sort_points(stencils, window);
+    /// Sorts the points by the row of their stencil's base node, given as
+    /// `bases` (one per point, [`Stencil::base`]); every stencil lies in
+    /// `window` (a layer's window covers its points' stencils). Points
+    /// already stored in row order, as in a body that has not flowed, cost
+    /// one counting pass.
+    pub fn sort_by_row(&mut self, bases: &[[u32; 2]], window: NodeRect) {
+        self.sort_points(bases, window);
         let chunks = self.points.len().div_ceil(CHUNK_POINTS);
         self.patches.resize(chunks, NodeRect::default());
         self.patches
             .par_iter_mut()
             .zip(self.points.par_chunks(CHUNK_POINTS))
             .for_each(|(patch, chunk)| {
-                *patch = covered_nodes(chunk.iter().map(|&p| &stencils[p as usize]));
+                *patch = covered_nodes(chunk.iter().map(|&p| bases[p as usize]));
             });
     }
 
     /// The counting sort of [`Self::sort_by_row`].
-    fn sort_points(&mut self, stencils: &[Stencil], window: NodeRect) {
+    fn sort_points(&mut self, bases: &[[u32; 2]], window: NodeRect) {
         self.window = window;
         let low = window.start[1] as u32;
         self.rows.clear();
         self.rows.resize(window.end[1] - window.start[1], 0);
         let mut in_row_order = true;
         let mut previous = 0;
-        for s in stencils {
-            let row = s.base[1].checked_sub(low).map(|r| r as usize);
+        for &[_, base_row] in bases {
+            let row = base_row.checked_sub(low).map(|r| r as usize);
             let Some(count) = row.and_then(|r| self.rows.get_mut(r)) else {
                 panic!(
-                    "a stencil at row {} lies outside the layer's stored nodes {window:?}",
-                    s.base[1]
+                    "a stencil at row {base_row} lies outside the layer's stored nodes {window:?}"
                 );
             };
             *count += 1;
-            in_row_order &= s.base[1] >= previous;
-            previous = s.base[1];
+            in_row_order &= base_row >= previous;
+            previous = base_row;
         }
         if in_row_order {
-            if !self.stored_order || self.points.len() != stencils.len() {
+            if !self.stored_order || self.points.len() != bases.len() {
                 self.points.clear();
-                self.points.extend(0..stencils.len() as u32);
+                self.points.extend(0..bases.len() as u32);
                 self.stored_order = true;
             }
             return;
@@ -99,9 +99,9 @@ impl ScatterOrder {
             *row = first;
             first += count;
         }
-        self.points.resize(stencils.len(), 0);
-        for (p, s) in stencils.iter().enumerate() {
-            let place = &mut self.rows[(s.base[1] - low) as usize];
+        self.points.resize(bases.len(), 0);
+        for (p, &[_, base_row]) in bases.iter().enumerate() {
+            let place = &mut self.rows[(base_row - low) as usize];
             self.points[*place as usize] = p as u32;
             *place += 1;
         }
@@ -220,15 +220,15 @@ impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
     }
 }
 
-/// The nodes that `stencils` (at least one) cover: the box around their
-/// 3 × 3 blocks.
-fn covered_nodes<'a>(stencils: impl Iterator<Item = &'a Stencil>) -> NodeRect {
+/// The nodes that the stencils at `bases` (at least one) cover: the box
+/// around their 3 × 3 blocks.
+fn covered_nodes(bases: impl Iterator<Item = [u32; 2]>) -> NodeRect {
     let mut lo = [u32::MAX; 2];
     let mut hi = [0u32; 2];
-    for s in stencils {
+    for base in bases {
         for d in 0..2 {
-            lo[d] = lo[d].min(s.base[d]);
-            hi[d] = hi[d].max(s.base[d] + STENCIL_WIDTH as u32);
+            lo[d] = lo[d].min(base[d]);
+            hi[d] = hi[d].max(base[d] + STENCIL_WIDTH as u32);
         }
     }
     NodeRect {
@@ -266,6 +266,11 @@ mod tests {
     use crate::shape_functions::{ShapeFunction, StencilGrid};
     use glam::DVec3;
 
+    /// The stencils' base nodes, as particle-to-grid gives them to the order.
+    fn bases_of(stencils: &[Stencil]) -> Vec<[u32; 2]> {
+        stencils.iter().map(|s| s.base).collect()
+    }
+
     /// The node places passed to `per_node` locate the nodes: points
     /// carrying an affine velocity field v(x) = v0 + A x as V_p = v(x_p)
     /// and C_p = A, scattered as S_ip m_p (V_p + C_p (x_i − x̄_p)), give
@@ -291,7 +296,7 @@ mod tests {
         // momentum in x and y, its mass in z.
         let scatter_field = |points: &[DVec2], stencils: &[Stencil]| {
             let mut order = ScatterOrder::default();
-            order.sort_by_row(stencils, NodeRect::whole(nodes));
+            order.sort_by_row(&bases_of(stencils), NodeRect::whole(nodes));
             let mut scatter = Scatter::<DVec3>::default();
             scatter.scatter(
                 stencils,
@@ -396,7 +401,7 @@ mod tests {
                 .unwrap();
             pool.install(|| {
                 let mut order = ScatterOrder::default();
-                order.sort_by_row(&stencils, NodeRect::whole(nodes));
+                order.sort_by_row(&bases_of(&stencils), NodeRect::whole(nodes));
                 let mut scatter = Scatter::<Real>::default();
                 scatter.scatter(&stencils, &order, |p| 1.0 + p as Real, |m, w, _, _| m * w);
                 let mut grid = vec![0.0; nodes[0] * nodes[1]];
@@ -451,7 +456,7 @@ mod tests {
         let mixed: Vec<Stencil> = (0..n).map(|k| ordered[(7919 * k) % n]).collect();
         let patch_nodes = |stencils: &[Stencil]| {
             let mut order = ScatterOrder::default();
-            order.sort_by_row(stencils, NodeRect::whole(grid.nodes));
+            order.sort_by_row(&bases_of(stencils), NodeRect::whole(grid.nodes));
             let mut scatter = Scatter::<Real>::default();
             scatter.scatter(stencils, &order, |_| 1.0, |m, w, _, _| m * w);
             scatter.patch_nodes()
@@ -504,7 +509,7 @@ mod tests {
             vec![],
         ] {
             let stencils: Vec<Stencil> = rows.into_iter().map(at_row).collect();
-            order.sort_by_row(&stencils, window);
+            order.sort_by_row(&bases_of(&stencils), window);
             check(&order, &stencils);
         }
     }
@@ -520,6 +525,6 @@ mod tests {
             base: [4, 9],
             ..Stencil::default()
         };
-        ScatterOrder::default().sort_by_row(&[stray], window);
+        ScatterOrder::default().sort_by_row(&[stray.base], window);
     }
 }

@@ -59,13 +59,19 @@ pub fn particle_to_grid(
         let g = g + own.map_or(DVec2::ZERO, |a| a.at(clock.time));
         let TransferScratch {
             stencils,
+            stencil_bases,
             order,
             mass_momentum,
             ..
         } = &mut *scratch;
         stencils.resize(points.len(), Stencil::default());
-        let outside =
-            kernel.fill_stencils(&points.position, &points.half_size, &stencil_grid, stencils);
+        stencil_bases.resize(points.len(), [0; 2]);
+        let outside = kernel.fill_stencils(
+            &points.position,
+            &points.half_size,
+            &stencil_grid,
+            (stencils, stencil_bases),
+        );
         if let Some(p) = outside {
             // Its stencil is a zero one at node (0, 0): store the whole grid
             // so every index stays valid until the run stops.
@@ -80,7 +86,7 @@ pub fn particle_to_grid(
             });
         }
         let window = layer.window();
-        order.sort_by_row(stencils, window);
+        order.sort_by_row(stencil_bases, window);
         let force_on = |p: usize| {
             let contact = if body_force {
                 points.contact_force[p]

@@ -35,8 +35,12 @@ pub struct TransferScratch {
     /// transfer of the step uses these, including the stress update of USL
     /// and MUSL after the positions have moved.
     pub stencils: Vec<Stencil>,
+    /// Each stencil's base node, `stencils[p].base`, as a compact column:
+    /// the scatter order reads these alone, and a pass over them touches a
+    /// fourteenth of the memory of one over the stencils.
+    pub stencil_bases: Vec<[u32; 2]>,
     /// The order in which this step's scatters visit the points, sorted
-    /// from `stencils` by particle-to-grid.
+    /// from `stencil_bases` by particle-to-grid.
     pub order: ScatterOrder,
     /// Patches of the mass / momentum / external force scatter.
     pub mass_momentum: Scatter<MassMomentumForce>,

@@ -83,14 +83,15 @@ impl ShapeFunction {
     }
 
     /// Computes the stencil of every point into `out` (same length as the
-    /// columns), in parallel, and returns the index of the first point that
-    /// has left the grid (its stencil is then empty), if any.
+    /// columns), and each stencil's base node into `bases`, in parallel, and
+    /// returns the index of the first point that has left the grid (its
+    /// stencil is then empty), if any.
     pub(crate) fn fill_stencils(
         self,
         positions: &[DVec2],
         half_sizes: &[DVec2],
         grid: &StencilGrid,
-        out: &mut [Stencil],
+        out: (&mut [Stencil], &mut [[u32; 2]]),
     ) -> Option<usize> {
         match self {
             Self::Linear => fill(LinearHat, positions, half_sizes, grid, out),
@@ -116,19 +117,23 @@ fn fill<K: Kernel>(
     positions: &[DVec2],
     half_sizes: &[DVec2],
     grid: &StencilGrid,
-    out: &mut [Stencil],
+    (out, bases): (&mut [Stencil], &mut [[u32; 2]]),
 ) -> Option<usize> {
+    assert_eq!(out.len(), bases.len(), "a base node per stencil");
     out.par_chunks_mut(MIN_POINTS_PER_TASK)
+        .zip(bases.par_chunks_mut(MIN_POINTS_PER_TASK))
         .enumerate()
-        .filter_map(|(c, chunk)| {
+        .filter_map(|(c, (chunk, chunk_bases))| {
             let first = c * MIN_POINTS_PER_TASK;
             let columns = positions[first..].iter().zip(&half_sizes[first..]);
             let mut outside = None;
-            for (k, (stencil, (x, half))) in chunk.iter_mut().zip(columns).enumerate() {
+            let outputs = chunk.iter_mut().zip(chunk_bases.iter_mut());
+            for (k, ((stencil, base), (x, half))) in outputs.zip(columns).enumerate() {
                 *stencil = Stencil::new(kernel, *x, *half, grid).unwrap_or_else(|| {
                     outside.get_or_insert(first + k);
                     Stencil::default()
                 });
+                *base = stencil.base;
             }
             outside
         })
