@@ -66,7 +66,9 @@ impl ScatterOrder {
             });
     }
 
-    /// The counting sort of [`Self::sort_by_row`].
+    /// The counting sort of [`Self::sort_by_row`]. It takes the points in
+    /// runs of one row, as they mostly come: a count or a place kept in a
+    /// register over a run, not stored and reloaded at every point.
     fn sort_points(&mut self, bases: &[[u32; 2]], window: NodeRect) {
         self.window = window;
         let low = window.start[1] as u32;
@@ -74,14 +76,15 @@ impl ScatterOrder {
         self.rows.resize(window.end[1] - window.start[1], 0);
         let mut in_row_order = true;
         let mut previous = 0;
-        for &[_, base_row] in bases {
+        for run in bases.chunk_by(|a, b| a[1] == b[1]) {
+            let base_row = run[0][1];
             let row = base_row.checked_sub(low).map(|r| r as usize);
             let Some(count) = row.and_then(|r| self.rows.get_mut(r)) else {
                 panic!(
                     "a stencil at row {base_row} lies outside the layer's stored nodes {window:?}"
                 );
             };
-            *count += 1;
+            *count += run.len() as u32;
             in_row_order &= base_row >= previous;
             previous = base_row;
         }
@@ -100,10 +103,16 @@ impl ScatterOrder {
             first += count;
         }
         self.points.resize(bases.len(), 0);
-        for (p, &[_, base_row]) in bases.iter().enumerate() {
-            let place = &mut self.rows[(base_row - low) as usize];
-            self.points[*place as usize] = p as u32;
-            *place += 1;
+        let mut start = 0;
+        for run in bases.chunk_by(|a, b| a[1] == b[1]) {
+            let place = &mut self.rows[(run[0][1] - low) as usize];
+            let end = start + run.len() as u32;
+            let places = *place as usize..(*place + run.len() as u32) as usize;
+            for (slot, p) in self.points[places].iter_mut().zip(start..end) {
+                *slot = p;
+            }
+            *place += run.len() as u32;
+            start = end;
         }
         self.stored_order = false;
     }
