@@ -22,7 +22,7 @@ struct SetClock {
 
 /// Adds a timer to `sim`'s step: a mark between each pair of consecutive
 /// sets records the time since the last mark. The marks only read the
-/// clock, so the run's results do not change.
+/// clock, so the run's results do not change. Call it once per simulation.
 pub fn start_set_timer(sim: &mut Simulation) -> Result<(), StepError> {
     let order = MpmSystems::order(sim.world().resource::<Settings>().scheme);
     sim.world_mut().insert_resource(SetClock {
