@@ -546,23 +546,19 @@ fn say_set_times(sim: &mut Simulation, steps: u64, seconds: f64) -> Result<(), F
     if sets.is_empty() {
         return Ok(());
     }
-    let per_step = |s: f64| 1e3 * s / steps as f64;
-    let share = |s: f64| 100.0 * s / seconds;
-    for (set, s) in &sets {
+    let row = |label: &str, s: f64| {
+        let (per_step, share) = (1e3 * s / steps as f64, 100.0 * s / seconds);
         say(&format!(
-            "  {:<16} {:>9.3} ms/step {:>5.1}%",
-            format!("{set:?}"),
-            per_step(*s),
-            share(*s)
-        ))?;
+            "  {label:<16} {per_step:>9.3} ms/step {share:>5.1}%"
+        ))
+    };
+    for (set, s) in &sets {
+        row(&format!("{set:?}"), *s)?;
     }
-    let rest = seconds - sets.iter().map(|(_, s)| s).sum::<f64>();
-    say(&format!(
-        "  {:<16} {:>9.3} ms/step {:>5.1}%",
+    row(
         "between sets",
-        per_step(rest),
-        share(rest)
-    ))
+        seconds - sets.iter().map(|(_, s)| s).sum::<f64>(),
+    )
 }
 
 fn bench_scene(path: &Path, timing: BenchTiming) -> Result<(), Failure> {
