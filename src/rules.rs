@@ -185,6 +185,26 @@ pub fn file_name(name: &str) -> Result<(), RuleError> {
     }
 }
 
+/// Longest file name, in bytes, that the usual file systems accept
+/// (ext4, XFS, APFS, NTFS: 255).
+pub const FILE_NAME_MAX_BYTES: usize = 255;
+
+/// A file name a name becomes (`file`, as written into the output folder)
+/// that fits [`FILE_NAME_MAX_BYTES`] also under the temporary name it is
+/// written under first ([`crate::files::PARTIAL_PREFIX`] before it), so
+/// that a run never fails at its end for a name the scene gave.
+pub fn fits_in_file_name(file: &str) -> Result<(), RuleError> {
+    let bytes = crate::files::PARTIAL_PREFIX.len() + file.len();
+    if bytes > FILE_NAME_MAX_BYTES {
+        Err(RuleError::FileName(format!(
+            "the name makes the file '{file}', whose temporary name while it is written is {bytes} bytes long, past the {FILE_NAME_MAX_BYTES} that file systems allow: shorten the name by {} bytes",
+            bytes - FILE_NAME_MAX_BYTES
+        )))
+    } else {
+        Ok(())
+    }
+}
+
 /// A name made safe for a file name: every character but ASCII letters,
 /// digits, `-` and `_` becomes `_` (probe names, which users write freely,
 /// as in "top, left").

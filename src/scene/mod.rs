@@ -526,10 +526,10 @@ pub fn whole_steps(interval: Real, dt: Real) -> u64 {
 }
 
 /// The stems of the files a run writes into its folder besides the
-/// curves' (`<stem>.csv`, `.png`, `.pvd`, `.bin`): a curve may not take one.
-/// Probe plots are `probe_<name>_<quantity>.png`, so no curve name may
-/// start with [`PROBE_PLOT_PREFIX`].
-pub const RUN_FILE_STEMS: [&str; 8] = [
+/// curves' (`<stem>.csv`, `.png`, `.pvd`, `.gif`, `.txt`, `.bin`): a curve
+/// may not take one. Probe plots are `probe_<name>_<quantity>.png`, so no
+/// curve name may start with [`PROBE_PLOT_PREFIX`].
+pub const RUN_FILE_STEMS: [&str; 12] = [
     "points",
     "blocks",
     "probes",
@@ -538,7 +538,15 @@ pub const RUN_FILE_STEMS: [&str; 8] = [
     "stages",
     "snapshot",
     "checkpoint",
+    "fronts",
+    "block_rotation",
+    "animation",
+    "outputs",
 ];
+
+/// The longest quantity a probe plot's file name ends with
+/// (`probe_<name>_displacement.png`).
+pub const PROBE_PLOT_LONGEST_SUFFIX: &str = "_displacement.png";
 
 /// The start of every probe plot's file name.
 pub const PROBE_PLOT_PREFIX: &str = "probe_";

@@ -3,8 +3,8 @@
 use super::axisymmetry::axisymmetry_error;
 use super::{
     BodySpec, InitialStress, InitialVelocity, ListedPoint, MAX_SAMPLES, MAX_STEPS, MotionSpec,
-    PROBE_PLOT_PREFIX, RUN_FILE_STEMS, Scene, SceneError, Shape, SourceLocation, VelocityField,
-    whole_steps,
+    PROBE_PLOT_LONGEST_SUFFIX, PROBE_PLOT_PREFIX, RUN_FILE_STEMS, Scene, SceneError, Shape,
+    SourceLocation, VelocityField, whole_steps,
 };
 use crate::components::RigidVelocity;
 use crate::contact::ForceApplication;
@@ -85,6 +85,16 @@ impl Scene {
     /// The scene's name, which names the output folder.
     fn check_name(&self, v: &Locator) -> Result<(), SceneError> {
         if let Some(name) = &self.name {
+            if name.len() > rules::FILE_NAME_MAX_BYTES {
+                return Err(v.invalid(
+                    &["name"],
+                    format!(
+                        "name: {} bytes long, past the {} that file systems allow in a folder's name (the output folder is out/<name>): shorten it",
+                        name.len(),
+                        rules::FILE_NAME_MAX_BYTES
+                    ),
+                ));
+            }
             rules::file_name(name).map_err(|e| {
                 v.invalid(
                     &["name"],
@@ -587,6 +597,12 @@ impl Scene {
                     ),
                 ));
             }
+            let longest = format!(
+                "{PROBE_PLOT_PREFIX}{}{PROBE_PLOT_LONGEST_SUFFIX}",
+                rules::file_safe(&p.name)
+            );
+            rules::fits_in_file_name(&longest)
+                .map_err(|e| v.invalid(&at, format!("probe '{}': {e}", p.name)))?;
             if !p.at.is_finite() {
                 return Err(v.invalid(
                     &[at[0], at[1], "at"],
@@ -628,7 +644,9 @@ impl Scene {
                     format!("curve '{}': {message}", curve.name),
                 )
             };
-            rules::file_name(&curve.name).map_err(|e| fail_name(e.to_string()))?;
+            rules::file_name(&curve.name)
+                .and_then(|()| rules::fits_in_file_name(&format!("{}.csv", curve.name)))
+                .map_err(|e| fail_name(e.to_string()))?;
             // Compared without case: macOS and Windows file systems ignore it.
             let file = curve.name.to_lowercase();
             if !curve_names.insert(file.clone()) {
