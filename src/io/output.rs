@@ -65,6 +65,8 @@ struct SeriesFile {
     path: PathBuf,
     /// Rows written so far.
     written: usize,
+    /// The file's length after them (bytes).
+    length: u64,
     file: File,
     /// The rows of one append, written to the file in one call (so that a
     /// killed run is unlikely to leave a part of a row).
@@ -72,12 +74,14 @@ struct SeriesFile {
 }
 
 impl SeriesFile {
-    /// Appends the rows recorded since the last call.
+    /// Appends the rows recorded since the last call. An append that fails
+    /// (a full disk) is cut off the file, so that it ends with a whole row.
     fn append(&mut self, world: &bevy_ecs::world::World, bodies: &[String]) -> std::io::Result<()> {
         let Self {
             record,
             path,
             written,
+            length,
             file,
             rows: buffer,
         } = self;
@@ -91,8 +95,13 @@ impl SeriesFile {
             for k in *written..rows {
                 series.write_row(k, bodies, buffer)?;
             }
-            file.write_all(buffer)?;
+            if let Err(e) = file.write_all(buffer) {
+                // The write's own error is the one to report.
+                let _ = file.set_len(*length);
+                return Err(e);
+            }
             *written = rows;
+            *length += buffer.len() as u64;
             Ok(())
         };
         append().map_err(|e| located(path, e))
@@ -313,10 +322,12 @@ impl RunOutput {
             .append(true)
             .open(&path)
             .map_err(|e| located(&path, e))?;
+        let length = out.metadata().map_err(|e| located(&path, e))?.len();
         let mut file = SeriesFile {
             record,
             path,
             written,
+            length,
             file: out,
             rows: Vec::new(),
         };
