@@ -15,12 +15,14 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-/// Material point method with DEM-enriched contact (2D, plane strain).
+/// Material point method with DEM-enriched contact (2D: plane strain or
+/// axisymmetric).
 ///
 /// Exit status: 0 when the command did what it was asked; 1 on an error
 /// (a refused scene, a failed run, an output that cannot be written; the
-/// message says which); 130 when a run was stopped by Ctrl-C, SIGTERM or
-/// SIGHUP (its results up to the stop are written). A closed standard
+/// message says which); 2 on a command line it cannot read; 130 when a
+/// run was stopped by Ctrl-C, SIGTERM or SIGHUP (its results up to the
+/// stop are written). A closed standard
 /// output (`mpdem run ... | head`) drops what is printed and changes no
 /// status.
 #[derive(Parser)]
@@ -50,15 +52,17 @@ enum Command {
         #[arg(long, value_name = "SECONDS")]
         checkpoint_every: Option<f64>,
         /// Carry on from OUT/checkpoint.bin, written by a run of the same
-        /// scene (its time.end may have grown since), into the same folder.
+        /// scene (its time.end may have grown since), into the same folder;
+        /// the checkpoint is kept current at a stop and at the end.
         #[arg(long, conflicts_with = "restart")]
         resume: bool,
         /// Start over in a folder that holds a checkpoint, removing it (a
         /// run into such a folder is refused without --resume or --restart).
         #[arg(long)]
         restart: bool,
-        /// Replace the results another scene file's run wrote into the
-        /// folder (refused otherwise).
+        /// Write into a folder that another scene file's run wrote,
+        /// replacing its results, or that holds files no mpdem run wrote
+        /// (both refused otherwise).
         #[arg(long)]
         overwrite: bool,
     },
@@ -487,15 +491,27 @@ fn clock_time(d: Duration) -> String {
     format!("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
 }
 
+/// How long after a stop signal another one counts as the same request:
+/// `timeout` and job control send a signal to the process and to its
+/// group at once, so one request can arrive twice within microseconds.
+const SIGNAL_REPEAT_WINDOW: Duration = Duration::from_secs(1);
+
 /// A flag the first Ctrl-C, SIGTERM or SIGHUP raises, so that the run
 /// stops after its step and writes its results (and a checkpoint, if it
-/// writes them); a second one ends the process at once.
+/// writes them); another one, [`SIGNAL_REPEAT_WINDOW`] or more after the
+/// first, ends the process at once.
 fn stop_on_signals() -> Arc<AtomicBool> {
     let stop = Arc::new(AtomicBool::new(false));
     let flag = Arc::clone(&stop);
+    let mut first: Option<Instant> = None;
     let handler = ctrlc::set_handler(move || {
-        if flag.swap(true, Ordering::SeqCst) {
-            std::process::exit(STOPPED_STATUS.into());
+        flag.store(true, Ordering::SeqCst);
+        match first {
+            None => first = Some(Instant::now()),
+            Some(at) if at.elapsed() >= SIGNAL_REPEAT_WINDOW => {
+                std::process::exit(STOPPED_STATUS.into());
+            }
+            Some(_) => {}
         }
     });
     if let Err(e) = handler {

@@ -29,6 +29,12 @@ use std::time::{Duration, Instant};
 /// The checkpoint's file name in the output folder.
 pub const CHECKPOINT_FILE: &str = "checkpoint.bin";
 
+/// The file whose lock a run holds while it writes into its output folder,
+/// so that a second run into the same folder is refused instead of mixing
+/// its files with the first's. It is empty; the system releases the lock
+/// when the run's process ends, however it ends.
+pub const LOCK_FILE: &str = ".mpdem.lock";
+
 /// What to do with a checkpoint in the output folder.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Start {
@@ -47,12 +53,14 @@ pub enum Start {
 pub struct RunOptions {
     /// The output folder.
     pub out: PathBuf,
-    /// Simulated time between checkpoints (s); none are written without it.
+    /// Simulated time between checkpoints (s). Without it a fresh run
+    /// writes none, and a resumed run writes its checkpoint only at a stop
+    /// and at the end.
     pub checkpoint_every: Option<Real>,
     /// What to do with a checkpoint in the folder.
     pub start: Start,
-    /// Clear a folder that another scene file's run wrote (refused
-    /// otherwise).
+    /// Clear a folder that another scene file's run wrote, or write into
+    /// one holding files no mpdem run wrote (both refused otherwise).
     pub replace_other_scene: bool,
 }
 
@@ -92,6 +100,24 @@ pub enum RunError {
         .0.display()
     )]
     CheckpointInTheWay(PathBuf),
+    /// Another run is writing into the output folder.
+    #[error(
+        "{} is being written by another run, which holds its lock ({LOCK_FILE}): wait for that run to end, or choose another folder (--out)",
+        .0.display()
+    )]
+    FolderInUse(PathBuf),
+    /// The folder holds files that no mpdem run listed as its own.
+    #[error(
+        "{} holds files that no mpdem run wrote (such as {}), which a run could overwrite: choose another folder (--out), or --overwrite to write into it anyway",
+        dir.display(),
+        example.display()
+    )]
+    ForeignFolder {
+        /// The output folder.
+        dir: PathBuf,
+        /// One of its entries.
+        example: PathBuf,
+    },
     /// The folder holds the results of another scene file's run.
     #[error(
         "{} holds the results of {}, not of {}: choose another folder (--out), or --overwrite to replace them",
@@ -250,17 +276,23 @@ impl Runner {
                 .or_else(|_| std::path::absolute(path))
                 .unwrap_or(path.to_path_buf())
         });
-        if options.start != Start::Resume
-            && !options.replace_other_scene
-            && let Some(ours) = &source
-            && let Some(theirs) = written_by(&options.out).map_err(RunError::Output)?
-            && &theirs != ours
-        {
-            return Err(RunError::OtherScenesFolder {
-                dir: options.out.clone(),
-                theirs,
-                ours: ours.clone(),
-            });
+        if options.start != Start::Resume && !options.replace_other_scene {
+            if let Some(ours) = &source
+                && let Some(theirs) = written_by(&options.out).map_err(RunError::Output)?
+                && &theirs != ours
+            {
+                return Err(RunError::OtherScenesFolder {
+                    dir: options.out.clone(),
+                    theirs,
+                    ours: ours.clone(),
+                });
+            }
+            if let Some(example) = foreign_entry(&options.out).map_err(RunError::Output)? {
+                return Err(RunError::ForeignFolder {
+                    dir: options.out.clone(),
+                    example,
+                });
+            }
         }
         let sim = Simulation::from_scene(scene)?;
         Ok(Self {
@@ -315,6 +347,8 @@ impl Runner {
         let started = Instant::now();
         let dir = self.options.out.clone();
         let checkpoint = dir.join(CHECKPOINT_FILE);
+        // Held until the run returns.
+        let _lock = lock_folder(&dir)?;
         let mut output = self.open_output(&checkpoint)?;
         let sim = &mut self.sim;
         let clock = sim.clock();
@@ -322,6 +356,9 @@ impl Runner {
             .options
             .checkpoint_every
             .map(|t| whole_steps(t, clock.dt));
+        // A resumed run keeps its folder's checkpoint current, at a stop
+        // and at the end, also without an interval.
+        let keeps_checkpoint = checkpoint_steps.is_some() || self.options.start == Start::Resume;
         let total = clock.total_steps();
         let first_step = clock.step;
         // Step warnings already reported; the opening's notices go with
@@ -360,7 +397,8 @@ impl Runner {
                 failure = Some(format!("cannot write the output at {}", at(&e)));
                 break;
             }
-            if checkpoint_steps.is_some_and(|n| now.step.is_multiple_of(n) || now.finished())
+            let due = checkpoint_steps.is_some_and(|n| now.step.is_multiple_of(n));
+            if (due || (keeps_checkpoint && now.finished()))
                 && let Err(e) = sim.write_checkpoint(&checkpoint)
             {
                 failure = Some(format!("cannot write the checkpoint at {}", at(&e)));
@@ -386,7 +424,7 @@ impl Runner {
         // A stopped run's checkpoint first: it matters more than the plots.
         let now = sim.clock();
         let stopped = failure.is_none() && !now.finished();
-        let stop_checkpoint = (stopped && checkpoint_steps.is_some())
+        let stop_checkpoint = (stopped && keeps_checkpoint)
             .then(|| sim.write_checkpoint(&checkpoint).map_err(Box::new));
         if let Err(e) = output.finish(sim, failure.is_some()) {
             let written = format!("cannot write the output: {e}");
@@ -476,6 +514,49 @@ impl Runner {
             }
         }
     }
+}
+
+/// Creates the output folder `dir` if need be and takes its lock
+/// ([`LOCK_FILE`]), refusing the run if another run holds it.
+fn lock_folder(dir: &Path) -> Result<std::fs::File, RunError> {
+    std::fs::create_dir_all(dir).map_err(|e| RunError::Output(crate::files::located(dir, e)))?;
+    let path = dir.join(LOCK_FILE);
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&path)
+        .map_err(|e| RunError::Output(crate::files::located(&path, e)))?;
+    match file.try_lock() {
+        Ok(()) => Ok(file),
+        Err(std::fs::TryLockError::WouldBlock) => Err(RunError::FolderInUse(dir.to_path_buf())),
+        Err(std::fs::TryLockError::Error(e)) => {
+            Err(RunError::Output(crate::files::located(&path, e)))
+        }
+    }
+}
+
+/// An entry of the folder `dir` that no mpdem run wrote: any entry but the
+/// lock, when the folder has no list of a run's outputs
+/// ([`crate::io::manifest::MANIFEST_FILE`]). None for a missing or empty
+/// folder, or one a run wrote.
+fn foreign_entry(dir: &Path) -> std::io::Result<Option<PathBuf>> {
+    use crate::io::manifest::MANIFEST_FILE;
+    let entries = match std::fs::read_dir(dir) {
+        Ok(entries) => entries,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(crate::files::located(dir, e)),
+    };
+    if dir.join(MANIFEST_FILE).exists() {
+        return Ok(None);
+    }
+    for entry in entries {
+        let entry = entry.map_err(|e| crate::files::located(dir, e))?;
+        if entry.file_name() != LOCK_FILE {
+            return Ok(Some(entry.path()));
+        }
+    }
+    Ok(None)
 }
 
 /// The stage in progress and the most steps the run can take: the

@@ -320,14 +320,16 @@ fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outp
         let read = |dir: &std::path::Path| std::fs::read(dir.join(file)).expect(file);
         assert!(read(&resumed) == read(&straight), "{file} differs");
     }
-    // Refusals: a checkpoint past the scene's end, no checkpoint in the
-    // folder, a checkpoint interval of zero.
+    // The resumed run, given no interval, kept the checkpoint current: it
+    // is at its end (step 800), which the refusal of a checkpoint past a
+    // scene's end names. Refusals: that one, no checkpoint in the folder,
+    // a checkpoint interval of zero.
     let (_early_base, early) = common::edited_wave_scene("resume-early", "end: 1.0", "end: 0.03");
     let result = run(&early, &resumed, &["--resume"]);
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert!(
         !result.status.success()
-            && stderr.contains("at step 550 (t = 5.500000e-2 s), past the scene's end at step 300"),
+            && stderr.contains("at step 800 (t = 8.000000e-2 s), past the scene's end at step 300"),
         "{stderr}"
     );
     let empty = base.join("empty");
@@ -429,8 +431,18 @@ fn ctrl_c_stops_the_run_after_its_step_and_writes_its_results_and_a_checkpoint()
         assert!(started.elapsed().as_secs() < 60, "no checkpoint after 60 s");
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
-    let signal = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
+    // A second run into the folder meanwhile is refused, and changes nothing.
+    let second = run_into(&scene, &out, &["--resume"]);
+    let stderr = String::from_utf8_lossy(&second.stderr);
+    assert_eq!(second.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("is being written by another run"),
+        "{stderr}"
+    );
+    // Two signals at once (as `timeout` sends them, to the process and to
+    // its group) are one request: the run still stops after its step.
+    let signal = Command::new("sh")
+        .args(["-c", &format!("kill -INT {0}; kill -INT {0}", child.id())])
         .status()
         .expect("kill runs");
     assert!(signal.success());
@@ -448,4 +460,30 @@ fn ctrl_c_stops_the_run_after_its_step_and_writes_its_results_and_a_checkpoint()
     for file in ["probes.csv", "snapshot.png", "points.pvd"] {
         assert!(out.join(file).is_file(), "{file} missing");
     }
+}
+
+#[test]
+fn a_folder_holding_files_no_run_wrote_is_refused_unless_overwrite() {
+    let (base, scene) = common::edited_wave_scene("foreign", "end: 1.0", "end: 0.01");
+    let out = base.join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::write(out.join("energy.csv"), "the user's").unwrap();
+    let refused = run_into(&scene, &out, &[]);
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("holds files that no mpdem run wrote") && stderr.contains("--overwrite"),
+        "{stderr}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("energy.csv")).unwrap(),
+        "the user's"
+    );
+    let asked = run_into(&scene, &out, &["--overwrite"]);
+    assert!(
+        asked.status.success(),
+        "{}",
+        String::from_utf8_lossy(&asked.stderr)
+    );
+    assert!(out.join("outputs.txt").is_file());
 }
