@@ -297,10 +297,10 @@ impl Runner {
         let sim = Simulation::from_scene(scene)?;
         Ok(Self {
             scene: scene.clone(),
+            notices: checkpoint_notices(options.checkpoint_every, sim.clock().dt),
             source,
             options,
             sim,
-            notices: Vec::new(),
             ran: false,
         })
     }
@@ -514,6 +514,20 @@ impl Runner {
             }
         }
     }
+}
+
+/// A warning when checkpoints `every` this interval would be written at
+/// every step of `dt`, which slows a run many times over.
+fn checkpoint_notices(every: Option<Real>, dt: Real) -> Vec<String> {
+    every
+        .filter(|&t| t < dt)
+        .map(|t| {
+            format!(
+                "warning: the checkpoint interval {t:e} s is shorter than the time step {dt:e} s: a checkpoint is written at every step, which slows the run"
+            )
+        })
+        .into_iter()
+        .collect()
 }
 
 /// Creates the output folder `dir` if need be and takes its lock

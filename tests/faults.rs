@@ -241,6 +241,19 @@ fn runaway_input_is_refused_with_its_size() {
         stderr.contains("larger than the 100 bytes an input file may have (MPDEM_MAX_INPUT_BYTES"),
         "{stderr}"
     );
+    // A cap that is not a number is refused, not replaced by the default.
+    let result = mpdem()
+        .args(["check"])
+        .arg(common::scene_path("wave_1d.ron"))
+        .env("MPDEM_MAX_INPUT_BYTES", "1 GiB")
+        .output()
+        .expect("mpdem runs");
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("MPDEM_MAX_INPUT_BYTES is '1 GiB', not a number of bytes"),
+        "{stderr}"
+    );
     // Every step sampled over 10^7 steps: 10^7 rows of energies and as
     // many of the probe, more than a run keeps.
     let (_rows_base, rows) = common::write_edited(

@@ -114,7 +114,9 @@ pub enum FormatProblem {
     #[error("it ends after its first bytes")]
     Truncated,
     /// It has another layout.
-    #[error("layout {found} where this version reads {FORMAT}")]
+    #[error(
+        "layout {found} where this version reads {FORMAT}: written by another version of mpdem, or damaged"
+    )]
     Layout {
         /// The file's layout.
         found: u32,
