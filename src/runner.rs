@@ -248,8 +248,8 @@ impl Runner {
     /// Builds the scene's simulation for a run into `options.out`, after
     /// checking that the run may write there: a fresh run refuses a folder
     /// holding a checkpoint, and any folder another scene file's run
-    /// wrote (unless `replace_other_scene`); a resumed run needs the
-    /// checkpoint. `source` is the scene's file, if it has one. Nothing is
+    /// wrote or holding files no mpdem run wrote (unless
+    /// `replace_other_scene`); a resumed run needs the checkpoint. `source` is the scene's file, if it has one. Nothing is
     /// written yet.
     pub fn new(
         scene: &Scene,
@@ -335,7 +335,8 @@ impl Runner {
 
     /// Runs to the scene's end, or until `stop` is raised (after the step
     /// in progress), writing the results; calls `progress` every 64 steps
-    /// and at the end.
+    /// and at the end. It holds the folder's lock ([`LOCK_FILE`]) from the
+    /// start, and is refused while another run holds it.
     pub fn run(
         &mut self,
         stop: &AtomicBool,
