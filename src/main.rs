@@ -22,9 +22,8 @@ use std::time::{Duration, Instant};
 /// (a refused scene, a failed run, an output that cannot be written; the
 /// message says which); 2 on a command line it cannot read; 130 when a
 /// run was stopped by Ctrl-C, SIGTERM or SIGHUP (its results up to the
-/// stop are written). A closed standard
-/// output (`mpdem run ... | head`) drops what is printed and changes no
-/// status.
+/// stop are written). A closed standard output (`mpdem run ... | head`)
+/// drops what is printed and changes no status.
 #[derive(Parser)]
 #[command(version, about, long_about)]
 struct Cli {

@@ -14,7 +14,7 @@ use crate::math::{DVec2, Real};
 use crate::plugins::FrontLog;
 use crate::resources::{BlockLog, EnergyLog, Grid, Probes};
 use crate::rules::file_safe;
-use crate::scene::{CurveSpec, MotionSpec, PROBE_PLOT_PREFIX, Scene};
+use crate::scene::{CurveSpec, MotionSpec, PROBE_PLOT_LONGEST_SUFFIX, PROBE_PLOT_PREFIX, Scene};
 use crate::simulation::Simulation;
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -547,6 +547,13 @@ impl RunOutput {
                 ],
             ),
         ];
+        // The scene's check measures names against the longest of these.
+        assert!(
+            groups
+                .iter()
+                .all(|(group, ..)| group.len() + "_.png".len() <= PROBE_PLOT_LONGEST_SUFFIX.len()),
+            "a probe plot's name is longer than PROBE_PLOT_LONGEST_SUFFIX allows for"
+        );
         for (k, probe) in probes.probes.iter().enumerate() {
             for &(group, unit, picks) in &groups {
                 let curves: Vec<Vec<(Real, Real)>> = picks
