@@ -215,44 +215,37 @@ fn runaway_input_is_refused_with_its_size() {
         "{}",
         String::from_utf8_lossy(&result.stderr)
     );
-    // An endless scene file, and a file over a cap set by the variable.
-    if Path::new("/dev/zero").exists() {
+    // An endless scene file, a file over a cap set by the variable, and a
+    // cap that is not a number (refused, not replaced by the default): each
+    // refused with status 1 and the message given.
+    let refused_under_cap = |file: &Path, cap: &str, expected: &str| {
         let result = mpdem()
-            .args(["check", "/dev/zero"])
-            .env("MPDEM_MAX_INPUT_BYTES", "1000000")
+            .arg("check")
+            .arg(file)
+            .env("MPDEM_MAX_INPUT_BYTES", cap)
             .output()
             .expect("mpdem runs");
         let stderr = String::from_utf8_lossy(&result.stderr);
         assert_eq!(result.status.code(), Some(1), "{stderr}");
-        assert!(
-            stderr.contains("/dev/zero: cannot read the scene: larger than the 1000000 bytes"),
-            "{stderr}"
+        assert!(stderr.contains(expected), "{stderr}");
+    };
+    if Path::new("/dev/zero").exists() {
+        refused_under_cap(
+            Path::new("/dev/zero"),
+            "1000000",
+            "/dev/zero: cannot read the scene: larger than the 1000000 bytes",
         );
     }
-    let result = mpdem()
-        .args(["check"])
-        .arg(common::scene_path("wave_1d.ron"))
-        .env("MPDEM_MAX_INPUT_BYTES", "100")
-        .output()
-        .expect("mpdem runs");
-    let stderr = String::from_utf8_lossy(&result.stderr);
-    assert_eq!(result.status.code(), Some(1), "{stderr}");
-    assert!(
-        stderr.contains("larger than the 100 bytes an input file may have (MPDEM_MAX_INPUT_BYTES"),
-        "{stderr}"
+    let wave = common::scene_path("wave_1d.ron");
+    refused_under_cap(
+        &wave,
+        "100",
+        "larger than the 100 bytes an input file may have (MPDEM_MAX_INPUT_BYTES",
     );
-    // A cap that is not a number is refused, not replaced by the default.
-    let result = mpdem()
-        .args(["check"])
-        .arg(common::scene_path("wave_1d.ron"))
-        .env("MPDEM_MAX_INPUT_BYTES", "1 GiB")
-        .output()
-        .expect("mpdem runs");
-    let stderr = String::from_utf8_lossy(&result.stderr);
-    assert_eq!(result.status.code(), Some(1), "{stderr}");
-    assert!(
-        stderr.contains("MPDEM_MAX_INPUT_BYTES is '1 GiB', not a number of bytes"),
-        "{stderr}"
+    refused_under_cap(
+        &wave,
+        "1 GiB",
+        "MPDEM_MAX_INPUT_BYTES is '1 GiB', not a number of bytes",
     );
     // Every step sampled over 10^7 steps: 10^7 rows of energies and as
     // many of the probe, more than a run keeps.
