@@ -1,7 +1,7 @@
 //! The library entry point: a world and its step schedule.
 
 use crate::checkpoint::StateHasher;
-use crate::checkpoint::{CheckpointError, restore_checkpoint, scene_fingerprint, write_checkpoint};
+use crate::checkpoint::{CheckpointError, SceneFingerprint, restore_checkpoint, write_checkpoint};
 use crate::components::{
     BlockId, BodyName, MaterialPoints, Pose, RigidVelocity, bodies_in_scene_order,
 };
@@ -61,7 +61,7 @@ pub struct Simulation {
     /// user state), the CSV series, the warnings.
     registries: Registries,
     /// The scene's fingerprint, which a checkpoint must match.
-    fingerprint: u64,
+    fingerprint: SceneFingerprint,
 }
 
 impl Simulation {
@@ -83,7 +83,7 @@ impl Simulation {
                 warnings: spawned.warnings,
                 ..Registries::default()
             },
-            fingerprint: scene_fingerprint(scene),
+            fingerprint: SceneFingerprint::of(scene),
         };
         for plugin in DEFAULT_PLUGINS {
             sim.build_plugin(plugin)?;
@@ -149,7 +149,7 @@ impl Simulation {
         restore_checkpoint(
             &mut self.world,
             scene,
-            self.fingerprint,
+            &self.fingerprint,
             &self.registries.kept,
             path,
         )
@@ -162,7 +162,7 @@ impl Simulation {
     pub fn write_checkpoint(&mut self, path: &Path) -> Result<(), CheckpointError> {
         write_checkpoint(
             &mut self.world,
-            self.fingerprint,
+            &self.fingerprint,
             &self.registries.kept,
             path,
         )
@@ -227,7 +227,7 @@ impl Simulation {
     /// resume the same run. For tests of resuming.
     #[doc(hidden)]
     pub fn encoded_state(&mut self) -> Result<Vec<u8>, CheckpointError> {
-        crate::checkpoint::encoded_state(&mut self.world, self.fingerprint, &self.registries.kept)
+        crate::checkpoint::encoded_state(&mut self.world, &self.fingerprint, &self.registries.kept)
     }
 
     /// The records the outputs write as CSV, in the order they were

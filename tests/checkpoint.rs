@@ -405,7 +405,21 @@ fn a_checkpoint_of_another_scene_or_no_checkpoint_is_refused() {
         "{error}"
     );
     assert!(
-        error.to_string().contains("written for a different scene"),
+        error.to_string().contains("written for a different scene")
+            && error.to_string().contains("(`time` changed)"),
+        "{error}"
+    );
+    // The refusal names each part that differs: a body changed, a probe
+    // added.
+    let mut moved = scene.clone();
+    moved.bodies[0].contact_radius = Some(0.001);
+    let mut probe = moved.probes[0].clone();
+    probe.name = "another".into();
+    moved.probes.push(probe);
+    let error = refusal(&moved, &file).to_string();
+    let body = format!("body \"{}\" changed", scene.bodies[0].name);
+    assert!(
+        error.contains(&format!("({body}, probe \"another\" added)")),
         "{error}"
     );
     // The name, the end time and the outputs may change.

@@ -146,7 +146,7 @@ pub enum FormatProblem {
 
 /// The layout of the stored state; a checkpoint of another layout is
 /// refused rather than misread (CHANGELOG.md names what each changed).
-const FORMAT: u32 = 17;
+const FORMAT: u32 = 18;
 
 impl CheckpointError {
     /// The error, naming the checkpoint file `path` where it names a file.
@@ -205,12 +205,15 @@ pub enum CheckpointError {
     },
     /// The checkpoint was written for another scene.
     #[error(
-        "{}: written for a different scene; between a run and its resumption only the scene's name, time.end and output may change",
+        "{}: written for a different scene ({changes}); between a run and its resumption only the scene's name, time.end and output may change",
         path.display()
     )]
     OtherScene {
         /// The checkpoint file.
         path: PathBuf,
+        /// What differs in the scene from the one the checkpoint was
+        /// written for.
+        changes: String,
     },
     /// The scene itself could not be built.
     #[error(transparent)]
@@ -229,7 +232,7 @@ pub enum CheckpointError {
 /// Everything a checkpoint stores.
 #[derive(Serialize, Deserialize)]
 struct RunState {
-    scene: u64,
+    scene: SceneFingerprint,
     step: u64,
     /// Every body in scene order: its entity (bodies are spawned first and
     /// never removed, so a rebuilt world gives them the same entities,
@@ -260,31 +263,117 @@ struct BlockState {
     contacts: BlockContacts,
 }
 
-/// Identifies a scene up to what a resumed run may change (its name,
-/// `time.end` and `output`): a hash of everything else.
-pub(crate) fn scene_fingerprint(scene: &Scene) -> u64 {
-    let mut fixed = scene.clone();
-    fixed.name = None;
-    fixed.time.end = 0.0;
-    fixed.output = OutputSpec::default();
-    // A point list's line numbers are for messages: a comment added to the
-    // file does not make another scene.
-    for body in &mut fixed.bodies {
-        if let Shape::Points { points, .. } = &mut body.shape {
-            points.iter_mut().for_each(|p| p.line = 0);
+/// A scene as a checkpoint identifies it, up to what a resumed run may
+/// change (its name, `time.end` and `output`): a hash of each of its
+/// parts, in scene order, so that a refusal can say which parts differ.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub(crate) struct SceneFingerprint {
+    /// Each part's label, as a user would name it, and its hash.
+    parts: Vec<(String, u64)>,
+}
+
+impl SceneFingerprint {
+    /// The fingerprint of `scene`.
+    pub(crate) fn of(scene: &Scene) -> Self {
+        let mut fixed = scene.clone();
+        fixed.name = None;
+        fixed.time.end = 0.0;
+        fixed.output = OutputSpec::default();
+        // A point list's line numbers are for messages: a comment added to
+        // the file does not make another scene.
+        for body in &mut fixed.bodies {
+            if let Shape::Points { points, .. } = &mut body.shape {
+                points.iter_mut().for_each(|p| p.line = 0);
+            }
+        }
+        let mut parts = vec![
+            part("`grid`", &fixed.grid),
+            part("`time`", &fixed.time),
+            part("`gravity`", &fixed.gravity),
+            part("`settings`", &fixed.settings),
+            part("`contact`", &fixed.contact),
+        ];
+        let named = |kind: &str, name: &str| format!("{kind} \"{name}\"");
+        parts.extend(
+            fixed
+                .materials
+                .iter()
+                .map(|m| part(&named("material", &m.name), m)),
+        );
+        parts.extend(
+            fixed
+                .bodies
+                .iter()
+                .map(|b| part(&named("body", &b.name), b)),
+        );
+        parts.extend(
+            fixed
+                .blocks
+                .iter()
+                .map(|b| part(&named("block", &b.name), b)),
+        );
+        parts.extend(
+            fixed
+                .probes
+                .iter()
+                .map(|p| part(&named("probe", &p.name), p)),
+        );
+        parts.extend(
+            fixed
+                .stages
+                .iter()
+                .map(|s| part(&named("stage", &s.name), s)),
+        );
+        let listed = |field: &str, k: usize| format!("`{field}` entry {}", k + 1);
+        let body_contacts = fixed.body_contacts.iter().enumerate();
+        parts.extend(body_contacts.map(|(k, c)| part(&listed("body_contacts", k), c)));
+        let block_contacts = fixed.block_contacts.iter().enumerate();
+        parts.extend(block_contacts.map(|(k, c)| part(&listed("block_contacts", k), c)));
+        Self { parts }
+    }
+
+    /// What differs in `self` from `earlier`, for a message: the parts
+    /// changed, added or removed, or, when each part is the same, their
+    /// order.
+    fn changes_since(&self, earlier: &Self) -> String {
+        let hash_in = |fingerprint: &Self, label: &str| {
+            let mut parts = fingerprint.parts.iter();
+            parts.find(|(l, _)| l == label).map(|(_, hash)| *hash)
+        };
+        let mut changes: Vec<String> = Vec::new();
+        for (label, hash) in &self.parts {
+            match hash_in(earlier, label) {
+                None => changes.push(format!("{label} added")),
+                Some(before) if before != *hash => changes.push(format!("{label} changed")),
+                Some(_) => {}
+            }
+        }
+        for (label, _) in &earlier.parts {
+            if hash_in(self, label).is_none() {
+                changes.push(format!("{label} removed"));
+            }
+        }
+        if changes.is_empty() {
+            "the order of its parts changed".into()
+        } else {
+            changes.join(", ")
         }
     }
+}
+
+/// A part of a scene's fingerprint: its label and the hash of its value.
+fn part(label: &str, value: &impl std::fmt::Debug) -> (String, u64) {
     let mut hasher = StateHasher::default();
     // Writing into the hasher cannot fail.
-    let _ = write!(hasher, "{fixed:?}");
-    hasher.finish()
+    let _ = write!(hasher, "{value:?}");
+    (label.to_string(), hasher.finish())
 }
 
 /// The world's state as a checkpoint stores it (`postcard`), without the
 /// file's header; an encoding error names no file.
 pub(crate) fn encoded_state(
     world: &mut World,
-    fingerprint: u64,
+    fingerprint: &SceneFingerprint,
     kept: &KeptState,
 ) -> Result<Vec<u8>, CheckpointError> {
     let holders = holders(world);
@@ -305,7 +394,7 @@ pub(crate) fn encoded_state(
 /// into place, so a stop while writing leaves the previous checkpoint.
 pub(crate) fn write_checkpoint(
     world: &mut World,
-    fingerprint: u64,
+    fingerprint: &SceneFingerprint,
     kept: &KeptState,
     path: &Path,
 ) -> Result<(), CheckpointError> {
@@ -343,7 +432,7 @@ pub(crate) fn write_checkpoint(
 pub(crate) fn restore_checkpoint(
     world: &mut World,
     scene: &Scene,
-    fingerprint: u64,
+    fingerprint: &SceneFingerprint,
     kept: &KeptState,
     path: &Path,
 ) -> Result<(), CheckpointError> {
@@ -374,9 +463,10 @@ pub(crate) fn restore_checkpoint(
     if !rest.is_empty() {
         return Err(format_error(FormatProblem::BytesLeft(rest.len())));
     }
-    if state.scene != fingerprint {
+    if state.scene != *fingerprint {
         return Err(CheckpointError::OtherScene {
             path: path.to_path_buf(),
+            changes: fingerprint.changes_since(&state.scene),
         });
     }
     let bodies = bodies_in_scene_order(world);
@@ -388,7 +478,7 @@ pub(crate) fn restore_checkpoint(
     apply(world, scene, state, kept).map_err(format_error)
 }
 
-fn capture(world: &mut World, fingerprint: u64, kept: Vec<StoredState>) -> RunState {
+fn capture(world: &mut World, fingerprint: &SceneFingerprint, kept: Vec<StoredState>) -> RunState {
     let bodies = bodies_in_scene_order(world)
         .into_iter()
         .filter_map(|e| {
@@ -424,7 +514,7 @@ fn capture(world: &mut World, fingerprint: u64, kept: Vec<StoredState>) -> RunSt
         .collect();
     blocks.sort_unstable_by_key(|b| b.index);
     RunState {
-        scene: fingerprint,
+        scene: fingerprint.clone(),
         step: world.resource::<Clock>().step,
         bodies,
         blocks,
