@@ -264,6 +264,10 @@ fn disk_pair(
     };
     let carried = before.map_or(DVec2::ZERO, |c| c.tangential);
     let f = pair_force(law, overlap, normal, relative, carried, dt);
+    let spring_work_correction = match before {
+        Some(_) => 0.5 * (f.tangential - carried).dot(relative * dt),
+        None => 0.0,
+    };
     Some(BodyPairContact {
         a,
         p,
@@ -275,6 +279,7 @@ fn disk_pair(
         at,
         radius: 0.5 * (rp + rq),
         separation: gap,
+        spring_work_correction,
     })
 }
 

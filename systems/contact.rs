@@ -131,6 +131,10 @@ pub fn compute_rigid_contacts(
                 };
                 let f = pair_force(law, delta, geometry.normal, relative, carried, clock.dt);
                 let tangential_potential = law.tangential_energy(f.tangential);
+                let spring_work_correction = match before {
+                    Some(_) => 0.5 * (f.tangential - carried).dot(relative * clock.dt),
+                    None => 0.0,
+                };
                 Some(PointContact {
                     body,
                     point: p,
@@ -141,6 +145,7 @@ pub fn compute_rigid_contacts(
                     from: points.position[i],
                     potential: law.normal_stiffness * normal_potential + tangential_potential,
                     tangential_potential,
+                    spring_work_correction,
                 })
             })
             .collect_into_vec(&mut found);

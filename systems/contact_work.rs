@@ -56,7 +56,7 @@ pub fn account_contact_work(
             let turned = points.velocity_gradient[k] * c.arm() * clock.dt;
             let moved = points.position[k] - c.from + turned;
             let surface_moved = pose.to_world(c.at_on_block) - c.at;
-            done += c.tangential.dot(moved - surface_moved);
+            done += c.tangential.dot(moved - surface_moved) + c.spring_work_correction;
             by_blocks += c.force.dot(surface_moved);
         }
     }
@@ -82,7 +82,7 @@ pub fn account_contact_work(
             let turned = (first.velocity_gradient[p] * arm_p - second.velocity_gradient[q] * arm_q)
                 * clock.dt;
             let moved = first.position[p] - second.position[q] - c.separation;
-            done += c.tangential.dot(moved + turned);
+            done += c.tangential.dot(moved + turned) + c.spring_work_correction;
         }
     }
     work.tangential_work = done;

@@ -166,6 +166,14 @@ pub struct PointContact {
     /// Energy stored in the tangential spring, |f_t|² / (2 k_t) with the
     /// k_t the force was found with (J/m; per radian in axisymmetry).
     pub tangential_potential: Real,
+    /// Half the change of the tangential force at this step, f_t − f_t
+    /// of the step before, times the relative motion over the step before
+    /// that the change was taken from (J/m; zero for a new contact):
+    /// added to `ContactWork`'s force-times-motion, it makes the work of
+    /// the tangential force the trapezoidal rule's, ½ (f_t,old + f_t,new)
+    /// · Δu, which a sticking spring's energy change matches exactly; so
+    /// only sliding and the springs of ended contacts count as dissipated.
+    pub spring_work_correction: Real,
 }
 
 impl PointContact {

@@ -42,6 +42,14 @@ pub struct BodyPairContact {
     pub radius: Real,
     /// x_p − x_q when the contact was found (m).
     pub separation: DVec2,
+    /// Half the change of the tangential force at this step, f_t − f_t
+    /// of the step before, times the relative motion over the step before
+    /// that the change was taken from (J/m; zero for a new contact):
+    /// added to `ContactWork`'s force-times-motion, it makes the work of
+    /// the tangential force the trapezoidal rule's, ½ (f_t,old + f_t,new)
+    /// · Δu, which a sticking spring's energy change matches exactly; so
+    /// only sliding and the springs of ended contacts count as dissipated.
+    pub spring_work_correction: Real,
 }
 
 impl BodyPairContact {
@@ -296,6 +304,7 @@ mod tests {
             at,
             radius: 0.01,
             separation: DVec2::ZERO,
+            spring_work_correction: 0.0,
         }
     }
 

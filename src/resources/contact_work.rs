@@ -14,11 +14,13 @@ use serde::{Deserialize, Serialize};
 /// [`crate::resources::EnergySample::blocks`]).
 #[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct ContactWork {
-    /// Σ over steps and contacts of f_t · Δ(x_p − x_other), with Δ the
-    /// motion over the step of the material at the contact point (the
+    /// Σ over steps and contacts of ½ (f_t + f_t') · Δ(x_p − x_other), with
+    /// Δ the motion over the step of the material at the contact point (the
     /// point's displacement plus its material's rotation about it) relative
-    /// to the other point's or to the block's surface point it touched, and
-    /// f_t the force found at the step's start (J/m). Negative when the
+    /// to the other point's or to the block's surface point it touched, f_t
+    /// the force found at the step's start and f_t' the one found from that
+    /// motion at the next step's (J/m): the trapezoidal rule, whose work on
+    /// a sticking spring is exactly its energy change. Negative when the
     /// contacts take energy.
     pub tangential_work: Real,
     /// Σ over steps and point–block contacts of f · Δs, f the force on the

@@ -118,11 +118,11 @@ pub struct EnergySample {
     /// Energy the point contacts' tangential forces have taken from the
     /// bodies since the start and their springs do not hold (J/m): −W_t −
     /// Σ |f_t|²/(2 k_t), W_t their work on the actual relative motion at
-    /// the contact points ([`crate::resources::ContactWork`]): Coulomb
-    /// sliding, and a new
-    /// contact's first stretch (by the FLIP velocity, before the pair has an
-    /// actual motion). The normal dashpot's work (`normal_damping`) is not
-    /// in it.
+    /// the contact points by the trapezoidal rule
+    /// ([`crate::resources::ContactWork`]): Coulomb sliding and the springs
+    /// of contacts that ended, less a new contact's first stretch (by the
+    /// FLIP velocity, before the pair has an actual motion). The normal
+    /// dashpot's work (`normal_damping`) is not in it.
     pub dissipated: Real,
     /// Energy grid and particle damping and the PIC (or XPIC) part of the
     /// velocity update have taken from the bodies since the start (J/m;
