@@ -361,8 +361,9 @@ fn check_all(paths: &[PathBuf]) -> Result<(), Failure> {
 fn check(path: &Path) -> Result<(), Failure> {
     let scene = Scene::load(path)?;
     let sim = Simulation::from_scene(&scene)?;
+    // Named by file: `check` may be given several scenes.
     for w in sim.warnings() {
-        say_err(&format!("warning: {w}"));
+        say_err(&format!("warning: {}: {w}", path.display()));
     }
     let clock = sim.clock();
     let geometry = match scene.settings.geometry {
@@ -434,7 +435,14 @@ fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
         {
             bar.suspend(|| say_err(&line));
         }
-        let message = format!("step {}/{of} t = {:.4e} s{stage}", p.step, p.time);
+        let message = if p.writing_results {
+            format!(
+                "step {}/{of} t = {:.4e} s: writing the results",
+                p.step, p.time
+            )
+        } else {
+            format!("step {}/{of} t = {:.4e} s{stage}", p.step, p.time)
+        };
         bar.set_length(p.length);
         bar.set_position(p.step);
         if p.step == p.first_step {
@@ -448,7 +456,7 @@ fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
             eta(p).map_or("-".into(), clock_time)
         );
         let due = last_line.is_none_or(|t| t.elapsed() >= LOG_PROGRESS_EVERY);
-        if log_lines && (due || p.step >= p.length) {
+        if log_lines && (due || p.step >= p.length || p.writing_results) {
             last_line = Some(Instant::now());
             say_err(&line);
             unlogged = None;
@@ -506,7 +514,12 @@ fn stop_on_signals() -> Arc<AtomicBool> {
     let handler = ctrlc::set_handler(move || {
         flag.store(true, Ordering::SeqCst);
         match first {
-            None => first = Some(Instant::now()),
+            None => {
+                first = Some(Instant::now());
+                say_err(
+                    "stop requested: the run stops after its step and writes its results (another stop signal a second or more from now ends it at once, without them)",
+                );
+            }
             Some(at) if at.elapsed() >= SIGNAL_REPEAT_WINDOW => {
                 std::process::exit(STOPPED_STATUS.into());
             }
@@ -819,6 +832,7 @@ mod tests {
             elapsed: Duration::from_secs(10),
             notices: &[],
             warnings: &[],
+            writing_results: false,
         };
         assert_eq!(eta(&p), Some(Duration::from_secs(100)));
         // Nothing taken yet: no pace.

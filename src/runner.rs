@@ -133,9 +133,10 @@ pub enum RunError {
         /// The scene file of this run.
         ours: PathBuf,
     },
-    /// The checkpoint is at or past the scene's end.
+    /// The checkpoint is at or past the run's end: its scene's end, or
+    /// where its last stage ended it.
     #[error(
-        "{}: the checkpoint is at step {step} (t = {time:.6e} s), past the scene's end at step {end_step} (time.end = {end:e} s): nothing to run; give a later time.end to carry the run on",
+        "{}: the checkpoint is at step {step} (t = {time:.6e} s), where the run has ended (the scene's end is step {end_step}, time.end = {end:e} s, unless its last stage ended it sooner): nothing to run, and the outputs are left as they are; give a later time.end to carry on a run that time.end ended",
         path.display()
     )]
     PastTheEnd {
@@ -213,6 +214,10 @@ pub struct Progress<'a> {
     /// Warnings the run found while stepping since the last report (see
     /// [`Simulation::step_warnings`]); a new one brings a report forward.
     pub warnings: &'a [String],
+    /// Whether the stepping is over and the run is writing its results (the
+    /// last frame, the collections, the CSV files, the plots and the
+    /// animation), which can take a while: the last report.
+    pub writing_results: bool,
 }
 
 /// What a finished run reached.
@@ -366,24 +371,26 @@ impl Runner {
         // the first report.
         let reported = Cell::new(0);
         let opening = Cell::new(&self.notices[..]);
-        let report = |sim: &Simulation, progress: &mut dyn FnMut(&Progress)| {
-            let clock = sim.clock();
-            let (stage, length) = stage_and_length(sim, total);
-            let notices = opening.take();
-            let warnings = &sim.step_warnings()[reported.get()..];
-            reported.set(reported.get() + warnings.len());
-            progress(&Progress {
-                step: clock.step,
-                first_step,
-                length,
-                time: clock.time,
-                stage,
-                elapsed: started.elapsed(),
-                notices,
-                warnings,
-            });
-        };
-        report(sim, &mut progress);
+        let report =
+            |sim: &Simulation, writing_results: bool, progress: &mut dyn FnMut(&Progress)| {
+                let clock = sim.clock();
+                let (stage, length) = stage_and_length(sim, total);
+                let notices = opening.take();
+                let warnings = &sim.step_warnings()[reported.get()..];
+                reported.set(reported.get() + warnings.len());
+                progress(&Progress {
+                    step: clock.step,
+                    first_step,
+                    length,
+                    time: clock.time,
+                    stage,
+                    elapsed: started.elapsed(),
+                    notices,
+                    warnings,
+                    writing_results,
+                });
+            };
+        report(sim, false, &mut progress);
         let mut failure = None;
         while !sim.clock().finished() {
             if let Err(e) = sim.step() {
@@ -412,9 +419,10 @@ impl Runner {
                 || now.finished()
                 || sim.step_warnings().len() > reported.get()
             {
-                report(sim, &mut progress);
+                report(sim, false, &mut progress);
             }
         }
+        report(sim, true, &mut progress);
         self.notices.extend(
             sim.world()
                 .resource::<StageLog>()
@@ -472,13 +480,14 @@ impl Runner {
             Start::Resume => {
                 sim.restore_checkpoint(scene, checkpoint)?;
                 let clock = sim.clock();
-                if clock.step > clock.total_steps() {
+                if clock.finished() {
+                    let end = scene.time.end;
                     return Err(RunError::PastTheEnd {
                         path: checkpoint.to_path_buf(),
                         step: clock.step,
                         time: clock.time,
-                        end_step: clock.total_steps(),
-                        end: clock.end,
+                        end_step: (end / clock.dt).round() as u64,
+                        end,
                     });
                 }
                 notices.push(format!(

@@ -105,7 +105,7 @@ impl Simulation {
 
     /// Builds the scene, then puts into it the state of the checkpoint at
     /// `path`, written by [`Simulation::write_checkpoint`] in a run of the
-    /// same scene (whose `time.end`, name and output may have changed since):
+    /// same scene (whose `time.end`, name and output but `output.fronts` may have changed since):
     /// stepping on gives bit-identically what the run that wrote it would
     /// have given. A checkpoint of another scene is refused.
     ///

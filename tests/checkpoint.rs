@@ -422,7 +422,12 @@ fn a_checkpoint_of_another_scene_or_no_checkpoint_is_refused() {
         error.contains(&format!("({body}, probe \"another\" added)")),
         "{error}"
     );
-    // The name, the end time and the outputs may change.
+    // The fronts are recorded from the start or not at all.
+    let mut fronts = scene.clone();
+    fronts.output.fronts = !scene.output.fronts;
+    let error = refusal(&fronts, &file).to_string();
+    assert!(error.contains("(`output.fronts` changed)"), "{error}");
+    // The name, the end time and the other outputs may change.
     let mut renamed = scene.clone();
     renamed.name = Some("wave, longer".into());
     renamed.time.end *= 2.0;

@@ -152,6 +152,20 @@ fn a_blow_up_stops_the_run_and_writes_no_broken_state() {
 }
 
 /// The state hash `mpdem run` prints.
+/// Every file under `dir`, at any depth.
+fn walk(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(dir).expect("a folder") {
+        let path = entry.expect("an entry").path();
+        if path.is_dir() {
+            files.extend(walk(&path));
+        } else {
+            files.push(path);
+        }
+    }
+    files
+}
+
 fn printed_hash(output: &std::process::Output) -> String {
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(
@@ -329,8 +343,31 @@ fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outp
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert!(
         !result.status.success()
-            && stderr.contains("at step 800 (t = 8.000000e-2 s), past the scene's end at step 300"),
+            && stderr.contains("at step 800 (t = 8.000000e-2 s), where the run has ended (the scene's end is step 300"),
         "{stderr}"
+    );
+    // The same scene resumed at its own end has nothing to run either: it
+    // is refused and leaves every output as it was.
+    let outputs = |dir: &std::path::Path| {
+        let mut files: Vec<(std::path::PathBuf, Vec<u8>)> = walk(dir)
+            .into_iter()
+            .filter(|f| !f.ends_with(mpdem::runner::LOCK_FILE))
+            .map(|f| (f.clone(), std::fs::read(&f).unwrap()))
+            .collect();
+        files.sort();
+        files
+    };
+    let before = outputs(&resumed);
+    let result = run(&long, &resumed, &["--resume"]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        !result.status.success()
+            && stderr.contains("nothing to run, and the outputs are left as they are"),
+        "{stderr}"
+    );
+    assert!(
+        outputs(&resumed) == before,
+        "a refused resumption changed the outputs"
     );
     let empty = base.join("empty");
     let result = run(&long, &empty, &["--resume"]);

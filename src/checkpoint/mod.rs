@@ -11,7 +11,7 @@
 //! the run is in its stages, and every record the outputs are written
 //! from. What the scene fixes (shapes, materials, laws, the grid) is
 //! rebuilt from the scene, so a checkpoint resumes only the scene it was
-//! written for: its name, `time.end` and `output` may change, nothing
+//! written for: its name, `time.end` and `output` (but `output.fronts`) may change, nothing
 //! else. Scratch buffers and the layers' node windows are not kept: they
 //! do not change the results. State that user systems keep, in resources
 //! or in components on the bodies and blocks, is carried once registered
@@ -205,7 +205,7 @@ pub enum CheckpointError {
     },
     /// The checkpoint was written for another scene.
     #[error(
-        "{}: written for a different scene ({changes}); between a run and its resumption only the scene's name, time.end and output may change",
+        "{}: written for a different scene ({changes}); between a run and its resumption only the scene's name, time.end and output (but output.fronts) may change",
         path.display()
     )]
     OtherScene {
@@ -264,8 +264,9 @@ struct BlockState {
 }
 
 /// A scene as a checkpoint identifies it, up to what a resumed run may
-/// change (its name, `time.end` and `output`): a hash of each of its
-/// parts, in scene order, so that a refusal can say which parts differ.
+/// change (its name, `time.end` and `output` but `output.fronts`, whose
+/// record from the start the checkpoint holds or not): a hash of each of
+/// its parts, in scene order, so that a refusal can say which parts differ.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub(crate) struct SceneFingerprint {
     /// Each part's label, as a user would name it, and its hash.
@@ -292,6 +293,7 @@ impl SceneFingerprint {
             part("`gravity`", &fixed.gravity),
             part("`settings`", &fixed.settings),
             part("`contact`", &fixed.contact),
+            part("`output.fronts`", &scene.output.fronts),
         ];
         let named = |kind: &str, name: &str| format!("{kind} \"{name}\"");
         parts.extend(

@@ -22,7 +22,7 @@ fn field(name: &str) -> Cow<'_, str> {
 /// trailing zeros dropped, so that the time of step n, n Δt in floating
 /// point, reads `1e-5` rather than `9.999999999999999e-6`. (The other
 /// columns keep every digit.)
-fn time(t: Real) -> String {
+pub(crate) fn time(t: Real) -> String {
     let written = format!("{t:.11e}");
     match written.split_once('e') {
         Some((mantissa, exponent)) => {

@@ -155,8 +155,11 @@ impl CsvSeries for FrontLog {
         let s = self.samples[k];
         writeln!(
             out,
-            "{:e},{},{:e},{:e}",
-            s.time, bodies[s.body as usize], s.farthest, s.bulk
+            "{},{},{:e},{:e}",
+            crate::io::csv::time(s.time),
+            bodies[s.body as usize],
+            s.farthest,
+            s.bulk
         )
     }
 }
@@ -176,5 +179,26 @@ mod tests {
         assert_eq!(farthest, 5.0);
         assert_eq!(bulk, 1999.0 / 2000.0);
         assert!(fronts(&mut []).0.is_nan());
+    }
+
+    /// The time column is written as the other series write it, so that
+    /// the files join on it: step 180 of 1e-4 s reads `1.8e-2`.
+    #[test]
+    fn times_are_written_as_in_the_other_series() {
+        let log = FrontLog {
+            samples: vec![FrontSample {
+                time: 180.0 * 1e-4,
+                body: 0,
+                farthest: 0.5,
+                bulk: 0.25,
+            }],
+            scratch: Vec::new(),
+        };
+        let mut row = Vec::new();
+        log.write_row(0, &["column".to_string()], &mut row).unwrap();
+        assert_eq!(
+            String::from_utf8(row).unwrap(),
+            "1.8e-2,column,5e-1,2.5e-1\n"
+        );
     }
 }

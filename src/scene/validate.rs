@@ -116,12 +116,14 @@ impl Scene {
                 format!("grid.origin must be finite, got {}", grid.origin),
             ));
         }
-        let nodes = (grid.cells.0 as u128 + 1) * (grid.cells.1 as u128 + 1);
+        // In u128 each factor fits, and their product saturates rather than
+        // wrap for counts near usize::MAX.
+        let nodes = (grid.cells.0 as u128 + 1).saturating_mul(grid.cells.1 as u128 + 1);
         if nodes > MAX_NODES {
             return Err(v.invalid(
                 &["grid", "cells"],
                 format!(
-                    "grid.cells {:?} give {nodes} nodes, more than the {MAX_NODES} a layer may hold",
+                    "grid.cells {:?} give more than the {MAX_NODES} nodes a layer may hold",
                     grid.cells
                 ),
             ));
@@ -429,6 +431,12 @@ impl Scene {
     ) -> Result<(), SceneError> {
         let name = quoted(&b.name);
         let fail = |field: &str, message: String| v.invalid(&["bodies", &name, field], message);
+        if let InitialVelocity::Constant(velocity) = b.velocity
+            && !velocity.is_finite()
+        {
+            let message = format!("body '{}': velocity must be finite, got {velocity}", b.name);
+            return Err(fail("velocity", message));
+        }
         if let InitialVelocity::Field { x, y } = &b.velocity {
             let field = VelocityField::parse(x, y)
                 .map_err(|e| fail("velocity", format!("body '{}': {e}", b.name)))?;
