@@ -446,6 +446,32 @@ fn an_end_off_the_time_step_warns_with_the_steps_taken() {
 }
 
 #[test]
+fn a_frame_at_every_step_of_a_long_run_warns_with_the_room_it_takes() {
+    // wave_1d: 10 000 steps of 1e-4 s. A frame every step writes 10 001
+    // frames of its points, past the ten thousand that draw a warning;
+    // every other step, 5 001, draws none.
+    let mut scene = common::load_scene("wave_1d.ron");
+    scene.output.frame_interval = Some(1e-4);
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    let bodies = sim.bodies();
+    let points: usize = bodies
+        .iter()
+        .map(|(entity, _)| sim.points(*entity).map_or(0, |p| p.len()))
+        .sum();
+    let warnings = sim.warnings().join("\n");
+    assert!(
+        warnings.contains(&format!(
+            "output: the run writes up to 10001 VTK frames (one every 1 steps), about {:.1} GB for its {points} points",
+            10001.0 * points as f64 * 220.0 / 1e9
+        )),
+        "{warnings}"
+    );
+    scene.output.frame_interval = Some(2e-4);
+    let sim = Simulation::from_scene(&scene).unwrap();
+    assert!(sim.warnings().is_empty(), "{:?}", sim.warnings());
+}
+
+#[test]
 fn output_intervals_off_the_time_step_warn_with_the_steps_taken() {
     let mut scene = common::load_scene("wave_1d.ron");
     scene.output.frame_interval = Some(2.5e-4);

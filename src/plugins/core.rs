@@ -5,7 +5,9 @@
 
 use super::{MpmPlugin, PluginSetup, placed_bodies};
 use crate::checkpoint::Checkpointed;
-use crate::components::{GridLayer, RegionConstraint, RegionConstraints, bodies_in_scene_order};
+use crate::components::{
+    GridLayer, MaterialPoints, RegionConstraint, RegionConstraints, bodies_in_scene_order,
+};
 use crate::math::Real;
 use crate::resources::{
     Clock, Diagnostics, EdgeConditions, Gravity, Grid, Settings, SharedLayers, UpdateScheme,
@@ -36,6 +38,12 @@ impl MpmPlugin for CorePlugin {
         };
         setup.warn_all(time_step_warnings(scene, &clock, &grid));
         let bodies = bodies_in_scene_order(setup.world);
+        let points = bodies
+            .iter()
+            .filter_map(|&b| setup.world.get::<MaterialPoints>(b))
+            .map(MaterialPoints::len)
+            .sum();
+        setup.warn_all(frame_count_warning(scene, &clock, points));
         setup.warn_all(free_edge_warnings_at_the_start(
             scene,
             setup.world,
@@ -103,6 +111,27 @@ fn time_step_warnings(scene: &Scene, clock: &Clock, grid: &Grid) -> Vec<String> 
         }
     }
     warnings
+}
+
+/// Frames above which the VTK output draws a warning: ten thousand frames
+/// of a body of some ten thousand points fill tens of gigabytes.
+const MANY_FRAMES: u64 = 10_000;
+
+/// Bytes a frame's `.vtu` file takes per point (its positions and
+/// fields as written, measured on the files).
+const FRAME_BYTES_PER_POINT: Real = 220.0;
+
+/// A warning when the run would write more than [`MANY_FRAMES`] frames of
+/// its `points`, with the room they would take.
+fn frame_count_warning(scene: &Scene, clock: &Clock, points: usize) -> Option<String> {
+    let every = scene.output.frame_every(clock.end, clock.dt);
+    let frames = clock.total_steps() / every + 1;
+    let gigabytes = frames as Real * points as Real * FRAME_BYTES_PER_POINT / 1e9;
+    (frames > MANY_FRAMES).then(|| {
+        format!(
+            "output: the run writes up to {frames} VTK frames (one every {every} steps), about {gigabytes:.1} GB for its {points} points; a longer output.frame_interval writes fewer"
+        )
+    })
 }
 
 /// Warnings about bodies resting on a free edge that gravity does not pull
