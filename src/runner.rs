@@ -18,7 +18,7 @@ use crate::checkpoint::CheckpointError;
 use crate::io::RunOutput;
 use crate::io::manifest::written_by;
 use crate::math::Real;
-use crate::resources::{StageLog, StagePlan};
+use crate::resources::{EnergyLog, EnergySample, StageLog, StagePlan};
 use crate::scene::{Scene, SceneError, whole_steps};
 use crate::simulation::Simulation;
 use std::cell::Cell;
@@ -454,6 +454,8 @@ impl Runner {
                 checkpoint: stop_checkpoint,
             });
         }
+        let energy = &sim.world().resource::<EnergyLog>().samples;
+        self.notices.extend(still_moving_notice(energy));
         Ok(RunSummary {
             name: sim.name().to_owned(),
             steps: now.step,
@@ -524,6 +526,32 @@ impl Runner {
             }
         }
     }
+}
+
+/// Share of its peak that the kinetic energy, averaged over the last tenth
+/// of a run, must pass for the run to be said to end in motion.
+const STILL_MOVING: Real = 0.1;
+
+/// A note when the bodies have not come to rest at the run's end (the
+/// kinetic energy of the last tenth of the run, averaged over the energy
+/// record's samples, above [`STILL_MOVING`] of its peak): an undamped
+/// static problem ends at some moment of its oscillation, and its last
+/// frame and samples are not its state of rest.
+fn still_moving_notice(samples: &[EnergySample]) -> Option<String> {
+    let peak = samples.iter().map(|s| s.kinetic).fold(0.0, Real::max);
+    let end = samples.last()?.time;
+    let last: Vec<Real> = samples
+        .iter()
+        .filter(|s| s.time >= 0.9 * end)
+        .map(|s| s.kinetic)
+        .collect();
+    let mean = last.iter().sum::<Real>() / last.len() as Real;
+    (peak > 0.0 && mean > STILL_MOVING * peak).then(|| {
+        format!(
+            "note: the bodies are still moving at the end: over the last tenth of the run their kinetic energy averaged {:.0}% of its peak, so the last frame and samples are a moment of the motion, not a state of rest (damping, or a longer run, settles a static problem)",
+            100.0 * mean / peak
+        )
+    })
 }
 
 /// A warning when checkpoints `every` this interval would be written at
@@ -603,4 +631,45 @@ fn stage_and_length(sim: &Simulation, total: u64) -> (Option<&str>, u64) {
             steps.saturating_add(s.end.most_steps(clock.dt))
         });
     (Some(current.name.as_str()), latest.clamp(clock.step, total))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Samples every 0.01 s to 1 s of a kinetic energy `kinetic(t)`.
+    fn samples(kinetic: impl Fn(Real) -> Real) -> Vec<EnergySample> {
+        (0..=100)
+            .map(|k| {
+                let time = 0.01 * k as Real;
+                EnergySample {
+                    time,
+                    kinetic: kinetic(time),
+                    strain: 0.0,
+                    contact: 0.0,
+                    gravity: 0.0,
+                    inelastic: 0.0,
+                    loads: 0.0,
+                    blocks: 0.0,
+                    dissipated: 0.0,
+                    damped: 0.0,
+                }
+            })
+            .collect()
+    }
+
+    /// An undamped oscillation ends in motion (over 0.9–1 s its kinetic
+    /// energy sin²(20 t) averages 32% of its peak, at the samples); one
+    /// damped to 1% of its peak by the end does not, nor does a run that
+    /// never moved.
+    #[test]
+    fn a_run_that_ends_in_motion_is_noted() {
+        let undamped = samples(|t| (20.0 * t).sin().powi(2));
+        let note = still_moving_notice(&undamped).expect("a note");
+        assert!(note.contains("averaged 32% of its peak"), "{note}");
+        let damped = samples(|t| (-4.6 * t).exp() * (20.0 * t).sin().powi(2));
+        assert_eq!(still_moving_notice(&damped), None);
+        assert_eq!(still_moving_notice(&samples(|_| 0.0)), None);
+        assert_eq!(still_moving_notice(&[]), None);
+    }
 }
