@@ -286,7 +286,13 @@ enum Failure {
 fn verify_problems(missed: usize, failed: &[String]) -> String {
     let mut problems = Vec::new();
     if missed > 0 {
-        problems.push(format!("{missed} checks missed their target"));
+        let checks = mpdem::verify::report::counted(missed, "check");
+        let target = if missed == 1 {
+            "its target"
+        } else {
+            "their targets"
+        };
+        problems.push(format!("{checks} missed {target}"));
     }
     if !failed.is_empty() {
         problems.push(format!(
@@ -797,12 +803,13 @@ fn verify(names: &[String], places: VerifyPlaces, quiet: bool) -> Result<(), Fai
         .map(|r| r.case)
         .collect();
     let missed = count(Verdict::Missed);
+    let counted = mpdem::verify::report::counted;
     say(&format!(
-        "verify: {} cases; {} checks met, {missed} missed, {} reported; {} cases could not be measured; table in {}",
-        reports.len(),
-        count(Verdict::Met),
+        "verify: {}; {} met, {missed} missed, {} reported; {} could not be measured; table in {}",
+        counted(reports.len(), "case"),
+        counted(count(Verdict::Met), "check"),
         count(Verdict::Reported),
-        failed.len(),
+        counted(failed.len(), "case"),
         table.display()
     ))?;
     if missed == 0 && failed.is_empty() {

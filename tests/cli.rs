@@ -434,7 +434,7 @@ fn verify_tabulates_a_case_and_fails_when_a_target_is_missed() {
     assert!(!missed.status.success(), "{stdout}");
     assert!(stdout.contains("MISSED"), "{stdout}");
     assert!(
-        String::from_utf8_lossy(&missed.stderr).contains("checks missed their target"),
+        String::from_utf8_lossy(&missed.stderr).contains("1 check missed its target"),
         "{}",
         String::from_utf8_lossy(&missed.stderr)
     );

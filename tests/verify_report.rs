@@ -71,7 +71,7 @@ fn report_has_the_summary_the_checks_the_failure_and_the_figures() {
         "`mpdem verify --report docs/`",
         "| [wave_1d](#wave_1d) | paper 4.1 | 1 | 1 | 1 |",
         "| [toppling](#toppling) | paper 4.2.1 | could not be measured | | |",
-        "2 cases: 1 checks met, 1 missed, 1 reported; 1 cases could not be measured.",
+        "2 cases: 1 check met, 1 missed, 1 reported; 1 case could not be measured.",
         "| max \\|v − v_exact\\| | 1.85% | ≤ 2% | the floor of the finite-strain response | met |",
         "| F = π E\\* a² | 12% | < 10% | | missed |",
         "| run-out | 0.51 | 0.60 (published) | | reported |",

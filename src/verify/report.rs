@@ -207,11 +207,12 @@ fn markdown(command: &str, reports: &[CaseReport]) -> String {
     let failed = reports.iter().filter(|r| r.outcome.is_err()).count();
     line("");
     line(&format!(
-        "{} cases: {} checks met, {} missed, {} reported; {failed} cases could not be measured.",
-        reports.len(),
-        total(Verdict::Met),
+        "{}: {} met, {} missed, {} reported; {} could not be measured.",
+        counted(reports.len(), "case"),
+        counted(total(Verdict::Met), "check"),
         total(Verdict::Missed),
-        total(Verdict::Reported)
+        total(Verdict::Reported),
+        counted(failed, "case")
     ));
     for report in reports {
         line("");
@@ -275,4 +276,13 @@ fn capitalised(text: &str) -> String {
     chars.next().map_or_else(String::new, |first| {
         first.to_uppercase().chain(chars).collect()
     })
+}
+
+/// `n` and `thing`, plural but for one: "1 case", "2 cases".
+pub fn counted(n: usize, thing: &str) -> String {
+    if n == 1 {
+        format!("1 {thing}")
+    } else {
+        format!("{n} {thing}s")
+    }
 }
