@@ -459,7 +459,9 @@ fn run(path: &Path, request: RunRequest) -> Result<(), Failure> {
         let line = format!(
             "{message}, elapsed {}, ETA {}",
             clock_time(p.elapsed),
-            eta(p).map_or("-".into(), clock_time)
+            eta(p)
+                .filter(|_| !p.writing_results)
+                .map_or("-".into(), clock_time)
         );
         let due = last_line.is_none_or(|t| t.elapsed() >= LOG_PROGRESS_EVERY);
         if log_lines && (due || p.step >= p.length || p.writing_results) {
@@ -527,6 +529,7 @@ fn stop_on_signals() -> Arc<AtomicBool> {
                 );
             }
             Some(at) if at.elapsed() >= SIGNAL_REPEAT_WINDOW => {
+                say_err("second stop signal: exiting now, without the results not yet written");
                 std::process::exit(STOPPED_STATUS.into());
             }
             Some(_) => {}
