@@ -295,42 +295,13 @@ impl SceneFingerprint {
             part("`contact`", &fixed.contact),
             part("`output.fronts`", &scene.output.fronts),
         ];
-        let named = |kind: &str, name: &str| format!("{kind} \"{name}\"");
-        parts.extend(
-            fixed
-                .materials
-                .iter()
-                .map(|m| part(&named("material", &m.name), m)),
-        );
-        parts.extend(
-            fixed
-                .bodies
-                .iter()
-                .map(|b| part(&named("body", &b.name), b)),
-        );
-        parts.extend(
-            fixed
-                .blocks
-                .iter()
-                .map(|b| part(&named("block", &b.name), b)),
-        );
-        parts.extend(
-            fixed
-                .probes
-                .iter()
-                .map(|p| part(&named("probe", &p.name), p)),
-        );
-        parts.extend(
-            fixed
-                .stages
-                .iter()
-                .map(|s| part(&named("stage", &s.name), s)),
-        );
-        let listed = |field: &str, k: usize| format!("`{field}` entry {}", k + 1);
-        let body_contacts = fixed.body_contacts.iter().enumerate();
-        parts.extend(body_contacts.map(|(k, c)| part(&listed("body_contacts", k), c)));
-        let block_contacts = fixed.block_contacts.iter().enumerate();
-        parts.extend(block_contacts.map(|(k, c)| part(&listed("block_contacts", k), c)));
+        parts.extend(named_parts("material", &fixed.materials, |m| &m.name));
+        parts.extend(named_parts("body", &fixed.bodies, |b| &b.name));
+        parts.extend(named_parts("block", &fixed.blocks, |b| &b.name));
+        parts.extend(named_parts("probe", &fixed.probes, |p| &p.name));
+        parts.extend(named_parts("stage", &fixed.stages, |s| &s.name));
+        parts.extend(listed_parts("body_contacts", &fixed.body_contacts));
+        parts.extend(listed_parts("block_contacts", &fixed.block_contacts));
         Self { parts }
     }
 
@@ -361,6 +332,30 @@ impl SceneFingerprint {
             changes.join(", ")
         }
     }
+}
+
+/// The parts of a list of named entries, each labelled `kind "name"`.
+fn named_parts<'a, T: std::fmt::Debug>(
+    kind: &'a str,
+    entries: &'a [T],
+    name: impl Fn(&T) -> &str + 'a,
+) -> impl Iterator<Item = (String, u64)> + 'a {
+    entries
+        .iter()
+        .map(move |e| part(&format!("{kind} \"{}\"", name(e)), e))
+}
+
+/// The parts of a list of unnamed entries, each labelled by its place in
+/// the scene's `field`, from 1.
+fn listed_parts<'a, T: std::fmt::Debug>(
+    field: &'a str,
+    entries: &'a [T],
+) -> impl Iterator<Item = (String, u64)> + 'a {
+    let label = move |k: usize| format!("`{field}` entry {}", k + 1);
+    entries
+        .iter()
+        .enumerate()
+        .map(move |(k, e)| part(&label(k), e))
 }
 
 /// A part of a scene's fingerprint: its label and the hash of its value.
