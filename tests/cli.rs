@@ -321,6 +321,11 @@ fn a_run_resumed_from_its_checkpoint_with_a_later_end_gives_the_longer_runs_outp
             && stderr.contains("\nstep 550/800 t = 5.5000e-2 s"),
         "{stderr}"
     );
+    // The log says when the stepping is over and the results are written.
+    assert!(
+        stderr.contains("\nstep 800/800 t = 8.0000e-2 s: writing the results"),
+        "{stderr}"
+    );
     let resumed_hash = printed_hash(&resumed_run);
     let straight_hash = printed_hash(&run(&long, &straight, &[]));
     assert_eq!(resumed_hash, straight_hash);
@@ -488,6 +493,14 @@ fn ctrl_c_stops_the_run_after_its_step_and_writes_its_results_and_a_checkpoint()
     assert_eq!(result.status.code(), Some(130), "{stderr}");
     assert!(
         stderr.contains("stopped at step") && stderr.contains("`--resume` carries it on"),
+        "{stderr}"
+    );
+    // The request is acknowledged once, at once.
+    assert_eq!(
+        stderr
+            .matches("stop requested: the run stops after its step")
+            .count(),
+        1,
         "{stderr}"
     );
     // The series end where the run stopped, and the checkpoint is there.
