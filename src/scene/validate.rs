@@ -68,6 +68,7 @@ impl Scene {
     pub(super) fn validate_in(&self, source: Option<(&str, &Path)>) -> Result<(), SceneError> {
         let v = Locator { source };
         self.check_name(&v)?;
+        self.check_entry_names(&v)?;
         self.check_grid(&v)?;
         self.check_time(&v)?;
         self.check_settings(&v)?;
@@ -101,6 +102,42 @@ impl Scene {
                     format!("name: {e} (the output folder is out/<name>)"),
                 )
             })?;
+        }
+        Ok(())
+    }
+
+    /// Every named entry has a name: the messages, the outputs and the
+    /// entries that refer to one another go by it.
+    fn check_entry_names(&self, v: &Locator) -> Result<(), SceneError> {
+        let sections: [(&'static str, Vec<&str>); 5] = [
+            (
+                "materials",
+                self.materials.iter().map(|m| m.name.as_str()).collect(),
+            ),
+            (
+                "bodies",
+                self.bodies.iter().map(|b| b.name.as_str()).collect(),
+            ),
+            (
+                "blocks",
+                self.blocks.iter().map(|b| b.name.as_str()).collect(),
+            ),
+            (
+                "probes",
+                self.probes.iter().map(|p| p.name.as_str()).collect(),
+            ),
+            (
+                "stages",
+                self.stages.iter().map(|s| s.name.as_str()).collect(),
+            ),
+        ];
+        for (section, names) in sections {
+            if let Some(k) = names.iter().position(|name| name.trim().is_empty()) {
+                return Err(v.invalid(
+                    &nth_name(section, k),
+                    format!("{section}: entry {} has an empty name", k + 1),
+                ));
+            }
         }
         Ok(())
     }
