@@ -14,6 +14,7 @@ pub mod bench;
 pub mod checkpoint;
 pub mod components;
 pub mod contact;
+pub mod deposit;
 pub(crate) mod files;
 pub mod geometry;
 pub mod io;

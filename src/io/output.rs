@@ -11,7 +11,7 @@ use super::vtk::{
 use crate::components::{BlockId, BlockOutline, BodyIndex, MaterialPoints, Pose};
 use crate::files::{located, partial_path};
 use crate::math::{DVec2, Real};
-use crate::plugins::FrontLog;
+use crate::plugins::{DepositLog, FrontLog};
 use crate::resources::{BlockLog, EnergyLog, Grid, Probes};
 use crate::rules::file_safe;
 use crate::scene::{CurveSpec, MotionSpec, PROBE_PLOT_LONGEST_SUFFIX, PROBE_PLOT_PREFIX, Scene};
@@ -370,6 +370,9 @@ impl RunOutput {
         if let Some(fronts) = world.get_resource::<FrontLog>() {
             self.plot_fronts(fronts)?;
         }
+        if let Some(deposits) = world.get_resource::<DepositLog>() {
+            self.plot_deposits(deposits)?;
+        }
         self.plot_probes(probes)?;
         let grid = world.resource::<Grid>();
         self.plot_snapshot(sim.name(), grid)?;
@@ -508,10 +511,37 @@ impl RunOutput {
             curves.push(of_body().map(|s| (s.time, s.farthest)).collect());
             names.push(format!("{body}, 99.9%"));
             curves.push(of_body().map(|s| (s.time, s.bulk)).collect());
+            names.push(format!("{body}, toe at 2% of H0"));
+            curves.push(of_body().map(|s| (s.time, s.toe_2)).collect());
         }
         let series = lines(names.iter().map(String::as_str), &curves);
         self.folder.write_file("fronts.png", |path| {
             plot_series(path, "Fronts along +x", "time (s)", "front x (m)", &series)
+        })
+    }
+
+    /// `deposit.png`: each body's surface at the start and at the last
+    /// profile (`output.fronts`).
+    fn plot_deposits(&mut self, deposits: &DepositLog) -> std::io::Result<()> {
+        let last = deposits.columns.last().map_or(0.0, |c| c.time);
+        let mut names = Vec::new();
+        let mut curves: Vec<Vec<(Real, Real)>> = Vec::new();
+        for (k, body) in self.bodies.iter().enumerate() {
+            for (time, when) in [(0.0, "start"), (last, "last")] {
+                names.push(format!("{body}, {when} (t = {time:.3} s)"));
+                curves.push(
+                    deposits
+                        .columns
+                        .iter()
+                        .filter(|c| c.body as usize == k && c.time == time)
+                        .map(|c| (c.x, c.height))
+                        .collect(),
+                );
+            }
+        }
+        let series = lines(names.iter().map(String::as_str), &curves);
+        self.folder.write_file("deposit.png", |path| {
+            plot_series(path, "Surface of each body", "x (m)", "height above the initial base (m)", &series)
         })
     }
 

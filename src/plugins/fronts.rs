@@ -1,13 +1,16 @@
-//! Each body's front along +x over time, `fronts.csv` (with
-//! `output.fronts`): the run-out of a collapse or a dam break.
+//! Each body's front along +x over time, `fronts.csv`, and its deposit's
+//! surface at the frames, `deposit.csv` (with `output.fronts`): the
+//! run-out of a collapse or a dam break, measured as experiments measure
+//! it (see [`crate::deposit`]).
 
 use super::records::refill;
 use super::{MpmPlugin, PluginSetup};
 use crate::checkpoint::{Checkpointed, TimeRecord};
 use crate::components::{BodyIndex, MaterialPoints};
+use crate::deposit::{DepositDatum, SurfaceProfile, TOE_LEVELS, share_beyond};
 use crate::io::csv::CsvSeries;
 use crate::math::Real;
-use crate::resources::{Clock, Diagnostics, Probes, UpdateScheme};
+use crate::resources::{Clock, Diagnostics, Grid, Probes, UpdateScheme};
 use crate::scene::SceneError;
 use crate::systems::{DiagnosticsStep, record_probes_and_energy};
 use bevy_ecs::prelude::*;
@@ -28,18 +31,64 @@ pub struct FrontSample {
     pub farthest: Real,
     /// The x beyond which 0.1% of the body's points lie (m).
     pub bulk: Real,
+    /// The toe: the x where the body's surface first thins below 2% of its
+    /// initial height H0, along +x from its highest column (m).
+    pub toe_2: Real,
+    /// The same where it thins below 5% of H0 (m).
+    pub toe_5: Real,
+    /// The share of the body's mass beyond the toe at 2% of H0: material
+    /// thrown ahead of the deposit.
+    pub spray: Real,
+}
+
+/// One column of one body's surface at one frame.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DepositColumn {
+    /// Simulated time (s).
+    pub time: Real,
+    /// The body's index in the scene.
+    pub body: u32,
+    /// The x of the column's centre (m).
+    pub x: Real,
+    /// The height of the body's surface over the column above its initial
+    /// base (m).
+    pub height: Real,
 }
 
 /// The fronts, sampled with the probes.
-#[derive(Resource, Debug, Default)]
+#[derive(Resource, Debug)]
 pub struct FrontLog {
     /// Samples in time order, bodies in scene order within a time.
     pub samples: Vec<FrontSample>,
+    /// Each body's initial base and height, in scene order.
+    datums: Vec<DepositDatum>,
+    /// One body's surface, one bin per column of the grid, reused.
+    profile: SurfaceProfile,
     /// The x of one body's points, reused between samples.
     scratch: Vec<Real>,
 }
 
 impl FrontLog {
+    /// A log of the bodies of `bodies`, their surfaces binned by the
+    /// columns of `grid`'s cells.
+    fn new<'a>(
+        grid: &Grid,
+        bodies: impl Iterator<Item = (&'a BodyIndex, &'a MaterialPoints)>,
+    ) -> Self {
+        let mut placed: Vec<_> = bodies.collect();
+        placed.sort_unstable_by_key(|(index, _)| index.0);
+        let largest = placed.iter().map(|(_, p)| p.len()).max().unwrap_or(0);
+        Self {
+            samples: Vec::new(),
+            datums: placed
+                .iter()
+                .map(|(_, p)| DepositDatum::of(&p.position, &p.half_size))
+                .collect(),
+            profile: SurfaceProfile::new(grid.origin.x, grid.cell_size, grid.cells[0]),
+            scratch: Vec::with_capacity(largest),
+        }
+    }
+
     /// Appends the front of every body of `bodies` at `time`, in scene
     /// order.
     fn record<'a>(
@@ -52,14 +101,68 @@ impl FrontLog {
             self.scratch.clear();
             self.scratch.extend(points.position.iter().map(|x| x.x));
             let (farthest, bulk) = fronts(&mut self.scratch);
+            let datum = self.datums[index.0 as usize];
+            self.profile
+                .measure(&points.position, &points.half_size, datum.base);
+            let [toe_2, toe_5] = TOE_LEVELS.map(|f| self.profile.toe(f * datum.height));
             self.samples.push(FrontSample {
                 time,
                 body: index.0,
                 farthest,
                 bulk,
+                toe_2,
+                toe_5,
+                spray: share_beyond(toe_2, &points.position, &points.mass),
             });
         }
         self.samples[first..].sort_unstable_by_key(|s| s.body);
+    }
+}
+
+/// Each body's surface at the frames and at the run's last step, the
+/// columns it covers in x order (`deposit.csv`).
+#[derive(Resource, Debug)]
+pub struct DepositLog {
+    /// Columns in time order, bodies in scene order within a time.
+    pub columns: Vec<DepositColumn>,
+    /// Steps between two profiles: the frames'.
+    every: u64,
+    /// Each body's initial base, in scene order.
+    bases: Vec<Real>,
+    /// One body's surface, reused.
+    profile: SurfaceProfile,
+}
+
+impl DepositLog {
+    /// Appends the surface of every body of `bodies` at `time`, in scene
+    /// order, each column with material over it.
+    fn record<'a>(
+        &mut self,
+        time: Real,
+        bodies: impl Iterator<Item = (&'a BodyIndex, &'a MaterialPoints)>,
+    ) {
+        let first = self.columns.len();
+        for (index, points) in bodies {
+            let base = self.bases[index.0 as usize];
+            self.profile.measure(&points.position, &points.half_size, base);
+            let profile = &self.profile;
+            let covered = profile.heights.iter().enumerate().filter(|(_, h)| **h > 0.0);
+            self.columns
+                .extend(covered.map(|(k, &height)| DepositColumn {
+                    time,
+                    body: index.0,
+                    x: profile.centre(k),
+                    height,
+                }));
+        }
+        // Within a body the columns are in x order, each x once.
+        self.columns[first..]
+            .sort_unstable_by(|a, b| a.body.cmp(&b.body).then(a.x.total_cmp(&b.x)));
+    }
+
+    /// Whether the step the clock has just taken writes a profile.
+    fn due(&self, clock: &Clock) -> bool {
+        clock.step.is_multiple_of(self.every) || clock.step == clock.total_steps()
     }
 }
 
@@ -76,16 +179,24 @@ pub(crate) fn fronts(xs: &mut [Real]) -> (Real, Real) {
     (farthest, bulk)
 }
 
-/// Samples the fronts when the probes are sampled, unless the step failed.
+/// Samples the fronts when the probes are sampled and the surfaces at the
+/// frames, unless the step failed.
 fn record_fronts(
     clock: Res<Clock>,
     diagnostics: Res<Diagnostics>,
     probes: Res<Probes>,
     mut fronts: ResMut<FrontLog>,
+    mut deposits: ResMut<DepositLog>,
     bodies: Query<(&BodyIndex, &MaterialPoints)>,
 ) {
-    if diagnostics.failure.is_none() && probes.due(&clock) {
+    if diagnostics.failure.is_some() {
+        return;
+    }
+    if probes.due(&clock) {
         fronts.record(clock.time, bodies.iter());
+    }
+    if deposits.due(&clock) {
+        deposits.record(clock.time, bodies.iter());
     }
 }
 
@@ -98,16 +209,26 @@ impl MpmPlugin for FrontsPlugin {
             return Ok(());
         }
         let bodies = setup.scene.bodies.len();
-        let mut log = FrontLog {
-            samples: Vec::with_capacity(setup.samples_in_run() * bodies),
-            scratch: Vec::new(),
-        };
+        let samples = setup.samples_in_run();
+        let grid = setup.world.resource::<Grid>().clone();
+        let clock = *setup.world.resource::<Clock>();
         let mut query = setup.world.query::<(&BodyIndex, &MaterialPoints)>();
-        let largest = query.iter(setup.world).map(|(_, p)| p.len()).max();
-        log.scratch.reserve(largest.unwrap_or(0));
+        let mut log = FrontLog::new(&grid, query.iter(setup.world));
+        log.samples.reserve_exact(samples * bodies);
         log.record(0.0, query.iter(setup.world));
+        let every = setup.scene.output.frame_every(clock.end, clock.dt).max(1);
+        let profiles = (clock.total_steps() / every + 2) as usize;
+        let mut deposits = DepositLog {
+            columns: Vec::with_capacity(profiles * bodies * grid.cells[0]),
+            every,
+            bases: log.datums.iter().map(|d| d.base).collect(),
+            profile: log.profile.clone(),
+        };
+        deposits.record(0.0, query.iter(setup.world));
         setup.world.insert_resource(log);
+        setup.world.insert_resource(deposits);
         setup.record::<FrontLog>("fronts", "fronts.csv");
+        setup.record::<DepositLog>("deposit", "deposit.csv");
         Ok(())
     }
 
@@ -139,8 +260,51 @@ impl TimeRecord for FrontLog {
     }
 }
 
+impl Checkpointed for DepositLog {
+    type Stored = Vec<DepositColumn>;
+
+    fn stored(&self) -> Vec<DepositColumn> {
+        self.columns.clone()
+    }
+
+    fn restore(&mut self, columns: Vec<DepositColumn>) {
+        refill(&mut self.columns, columns);
+    }
+}
+
+impl TimeRecord for DepositLog {
+    fn forget_from(&mut self, time: Real) {
+        self.columns.retain(|c| c.time < time);
+    }
+}
+
+impl CsvSeries for DepositLog {
+    const HEADER: &'static str = "time,body,x,height";
+
+    fn rows(&self) -> usize {
+        self.columns.len()
+    }
+
+    fn write_row(
+        &self,
+        k: usize,
+        bodies: &[String],
+        out: &mut dyn std::io::Write,
+    ) -> std::io::Result<()> {
+        let c = self.columns[k];
+        writeln!(
+            out,
+            "{},{},{:e},{:e}",
+            crate::io::csv::time(c.time),
+            bodies[c.body as usize],
+            c.x,
+            c.height
+        )
+    }
+}
+
 impl CsvSeries for FrontLog {
-    const HEADER: &'static str = "time,body,farthest,front_99_9";
+    const HEADER: &'static str = "time,body,farthest,front_99_9,toe_2,toe_5,spray";
 
     fn rows(&self) -> usize {
         self.samples.len()
@@ -155,11 +319,14 @@ impl CsvSeries for FrontLog {
         let s = self.samples[k];
         writeln!(
             out,
-            "{},{},{:e},{:e}",
+            "{},{},{:e},{:e},{:e},{:e},{:e}",
             crate::io::csv::time(s.time),
             bodies[s.body as usize],
             s.farthest,
-            s.bulk
+            s.bulk,
+            s.toe_2,
+            s.toe_5,
+            s.spray
         )
     }
 }
@@ -191,14 +358,19 @@ mod tests {
                 body: 0,
                 farthest: 0.5,
                 bulk: 0.25,
+                toe_2: 0.375,
+                toe_5: 0.125,
+                spray: 0.5,
             }],
+            datums: Vec::new(),
+            profile: SurfaceProfile::new(0.0, 1.0, 0),
             scratch: Vec::new(),
         };
         let mut row = Vec::new();
         log.write_row(0, &["column".to_string()], &mut row).unwrap();
         assert_eq!(
             String::from_utf8(row).unwrap(),
-            "1.8e-2,column,5e-1,2.5e-1\n"
+            "1.8e-2,column,5e-1,2.5e-1,3.75e-1,1.25e-1,5e-1\n"
         );
     }
 }

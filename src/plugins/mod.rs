@@ -15,7 +15,7 @@ use body_contact::BodyContactPlugin;
 use core::CorePlugin;
 use fronts::FrontsPlugin;
 pub(crate) use fronts::fronts;
-pub use fronts::{FrontLog, FrontSample};
+pub use fronts::{DepositColumn, DepositLog, FrontLog, FrontSample};
 use records::RecordsPlugin;
 use rigid_blocks::RigidBlocksPlugin;
 use stages::StagesPlugin;

@@ -529,7 +529,7 @@ pub fn whole_steps(interval: Real, dt: Real) -> u64 {
 /// curves' (`<stem>.csv`, `.png`, `.pvd`, `.gif`, `.txt`, `.bin`): a curve
 /// may not take one. Probe plots are `probe_<name>_<quantity>.png`, so no
 /// curve name may start with [`PROBE_PLOT_PREFIX`].
-pub const RUN_FILE_STEMS: [&str; 12] = [
+pub const RUN_FILE_STEMS: [&str; 13] = [
     "points",
     "blocks",
     "probes",
@@ -539,6 +539,7 @@ pub const RUN_FILE_STEMS: [&str; 12] = [
     "snapshot",
     "checkpoint",
     "fronts",
+    "deposit",
     "block_rotation",
     "animation",
     "outputs",
