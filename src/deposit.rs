@@ -88,15 +88,15 @@ impl SurfaceProfile {
     /// centres of the last bin at or above it and the first below. The end
     /// of the last bin if it never does; NaN for a profile with no point.
     pub fn toe(&self, level: Real) -> Real {
-        let highest = self
-            .heights
-            .iter()
-            .enumerate()
-            .fold(None, |best: Option<(usize, Real)>, (k, &h)| match best {
-                Some((_, b)) if b >= h => best,
-                _ if h > 0.0 => Some((k, h)),
-                _ => best,
-            });
+        let highest =
+            self.heights
+                .iter()
+                .enumerate()
+                .fold(None, |best: Option<(usize, Real)>, (k, &h)| match best {
+                    Some((_, b)) if b >= h => best,
+                    _ if h > 0.0 => Some((k, h)),
+                    _ => best,
+                });
         let Some((first, _)) = highest else {
             return Real::NAN;
         };

@@ -2,7 +2,7 @@
 //! or XPIC, eqs. 12a/12b).
 
 use crate::components::{
-    DampedEnergy, GridLayer, MaterialPoints, RemapScratch, StepTravel, TransferScratch,
+    DampedEnergy, GridLayer, Material, MaterialPoints, RemapScratch, StepTravel, TransferScratch,
 };
 use crate::math::{DMat2, DVec2, Real, local_damping, outer};
 use crate::parallel::MIN_POINTS_PER_TASK;
@@ -36,7 +36,8 @@ use rayon::prelude::*;
 /// still move it) is put back on the wall, and its velocity's component
 /// into the wall removed.
 ///
-/// Reads: `Grid`, `Settings`, `Clock`, `SharedLayers` (groups), `GridLayer`, `TransferScratch::stencils`, `held_back`,
+/// Reads: `Grid`, `Settings`, `Clock`, `SharedLayers` (groups), `Material` (a
+/// granular body's PIC fraction), `GridLayer`, `TransferScratch::stencils`, `held_back`,
 /// `order` and `undamped`, `MaterialPoints` (mass, contact force: the
 /// points in contact this step).
 /// Writes: `MaterialPoints` (position, velocity, velocity gradient of the
@@ -55,7 +56,6 @@ pub fn grid_to_particle(
     let walls = grid.wall_bounds();
     let TransferOptions {
         dt,
-        beta,
         alpha,
         position_update,
         remapped,
@@ -67,7 +67,9 @@ pub fn grid_to_particle(
         takes,
         from_unconstrained,
     } = TransferOptions::new(&settings, clock.dt);
-    for (mut points, mut travel, mut damped, layer, mut scratch) in &mut bodies {
+    for (mut points, mut travel, mut damped, layer, mut scratch, material) in &mut bodies {
+        let beta = settings.pic_fraction_for(material.model.as_model().granular(), dt);
+        let takes = takes || beta != 0.0;
         let TransferScratch {
             stencils,
             order: scatter_order,
@@ -206,8 +208,6 @@ fn held_back_at(stencil: &Stencil, held_back: &[DVec2], origin: [u32; 2], row_le
 /// What the settings ask of the transfer, read once a step.
 struct TransferOptions {
     dt: Real,
-    /// The PIC fraction β.
-    beta: Real,
     /// The particle damping α.
     alpha: Real,
     position_update: Option<PositionUpdate>,
@@ -225,7 +225,8 @@ struct TransferOptions {
     moved_by: (Real, Real),
     grid_damped: bool,
     /// Whether the update takes energy that the balance must count
-    /// (undamped pure FLIP gives the FLIP update itself, bit for bit).
+    /// (undamped pure FLIP gives the FLIP update itself, bit for bit),
+    /// whatever the PIC fraction.
     takes: bool,
     /// `Settings::flip_from_unconstrained`.
     from_unconstrained: bool,
@@ -233,13 +234,12 @@ struct TransferOptions {
 
 impl TransferOptions {
     fn new(settings: &Settings, dt: Real) -> Self {
-        let (beta, alpha) = (settings.pic_fraction, settings.particle_damping);
+        let alpha = settings.particle_damping;
         let position_update = settings.position_update();
         let order = settings.xpic_order.unwrap_or(0);
         let grid_damped = settings.grid_damping != 0.0;
         Self {
             dt,
-            beta,
             alpha,
             position_update,
             remapped: position_update == Some(PositionUpdate::RemappedVelocity),
@@ -253,7 +253,7 @@ impl TransferOptions {
                 Some(PositionUpdate::RemappedVelocity) => (0.0, 0.0),
             },
             grid_damped,
-            takes: beta != 0.0 || alpha != 0.0 || order >= 1 || grid_damped,
+            takes: alpha != 0.0 || order >= 1 || grid_damped,
             from_unconstrained: settings.flip_from_unconstrained,
         }
     }
@@ -267,6 +267,7 @@ type G2pData = (
     &'static mut DampedEnergy,
     &'static GridLayer,
     &'static mut TransferScratch,
+    &'static Material,
 );
 
 /// Turns each body's remapped momentum into the remapped velocity field,
@@ -279,11 +280,11 @@ fn finish_the_remap(
     moving: Option<(Real, (DVec2, DVec2))>,
 ) {
     shared.share_field(|entity, f| {
-        if let Ok((.., layer, mut scratch)) = bodies.get_mut(entity) {
+        if let Ok((.., layer, mut scratch, _)) = bodies.get_mut(entity) {
             f(layer, &mut scratch.remap.current);
         }
     });
-    for (mut points, mut travel, _, layer, mut scratch) in bodies {
+    for (mut points, mut travel, _, layer, mut scratch, _) in bodies {
         momentum_to_velocity(layer, &mut scratch.remap.current);
         if let Some((dt, walls)) = moving {
             travel.0 = move_remapped(

@@ -541,7 +541,13 @@ impl RunOutput {
         }
         let series = lines(names.iter().map(String::as_str), &curves);
         self.folder.write_file("deposit.png", |path| {
-            plot_series(path, "Surface of each body", "x (m)", "height above the initial base (m)", &series)
+            plot_series(
+                path,
+                "Surface of each body",
+                "x (m)",
+                "height above the initial base (m)",
+                &series,
+            )
         })
     }
 

@@ -83,6 +83,13 @@ pub trait ConstitutiveModel: Send + Sync {
     /// deformation gradient `f` with out-of-plane component `f_zz` (1 in
     /// plane strain, the hoop stretch in axisymmetry) (J/m³).
     fn stored_energy_density(&self, stress: &SymTensor, f: &DMat2, f_zz: Real) -> Real;
+
+    /// Whether the material is granular: its strength is friction, so
+    /// where it flows its points' velocities relax toward the grid's
+    /// (`Settings::granular_relaxation`). False by default.
+    fn granular(&self) -> bool {
+        false
+    }
 }
 
 /// A plasticity model on a linear elastic predictor: the elastic trial
@@ -96,6 +103,12 @@ pub trait ElasticPlastic: Send + Sync {
 
     /// Returns a trial stress to the admissible set.
     fn return_map(&self, trial: SymTensor) -> SymTensor;
+
+    /// Whether the strength is friction (a granular material, see
+    /// [`ConstitutiveModel::granular`]). False by default.
+    fn frictional(&self) -> bool {
+        false
+    }
 
     /// The elastic trial: `stress` advanced over `step` by the elastic
     /// part (a model with its moduli worked out overrides it).
@@ -139,6 +152,10 @@ impl<T: ElasticPlastic> ConstitutiveModel for T {
 
     fn stored_energy_density(&self, stress: &SymTensor, f: &DMat2, f_zz: Real) -> Real {
         self.elastic().stored_energy_density(stress, f, f_zz)
+    }
+
+    fn granular(&self) -> bool {
+        self.frictional()
     }
 }
 
@@ -220,6 +237,10 @@ impl ConstitutiveModel for UserModel {
 
     fn stored_energy_density(&self, stress: &SymTensor, f: &DMat2, f_zz: Real) -> Real {
         self.model.stored_energy_density(stress, f, f_zz)
+    }
+
+    fn granular(&self) -> bool {
+        self.model.granular()
     }
 }
 

@@ -114,6 +114,10 @@ fn invariants(stress: &SymTensor) -> (Real, SymTensor, Real) {
 }
 
 impl ElasticPlastic for DruckerPrager {
+    fn frictional(&self) -> bool {
+        true
+    }
+
     /// The elastic part.
     fn elastic(&self) -> LinearElastic {
         LinearElastic {
@@ -168,6 +172,10 @@ pub(crate) struct PreparedDruckerPrager {
 }
 
 impl ElasticPlastic for PreparedDruckerPrager {
+    fn frictional(&self) -> bool {
+        true
+    }
+
     fn elastic(&self) -> LinearElastic {
         self.elastic.model()
     }

@@ -532,6 +532,10 @@ fn lode_angle(s: &Principal) -> Real {
 }
 
 impl ElasticPlastic for MohrCoulomb {
+    fn frictional(&self) -> bool {
+        true
+    }
+
     /// The elastic part.
     fn elastic(&self) -> LinearElastic {
         LinearElastic {
@@ -572,6 +576,10 @@ pub(crate) struct PreparedMohrCoulomb {
 }
 
 impl ElasticPlastic for PreparedMohrCoulomb {
+    fn frictional(&self) -> bool {
+        true
+    }
+
     fn elastic(&self) -> LinearElastic {
         self.elastic.model()
     }

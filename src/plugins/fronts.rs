@@ -144,9 +144,14 @@ impl DepositLog {
         let first = self.columns.len();
         for (index, points) in bodies {
             let base = self.bases[index.0 as usize];
-            self.profile.measure(&points.position, &points.half_size, base);
+            self.profile
+                .measure(&points.position, &points.half_size, base);
             let profile = &self.profile;
-            let covered = profile.heights.iter().enumerate().filter(|(_, h)| **h > 0.0);
+            let covered = profile
+                .heights
+                .iter()
+                .enumerate()
+                .filter(|(_, h)| **h > 0.0);
             self.columns
                 .extend(covered.map(|(k, &height)| DepositColumn {
                     time,
@@ -168,7 +173,7 @@ impl DepositLog {
 
 /// The largest of `xs` and the value beyond which a share [`AHEAD`] of
 /// them lie (NaN for none); reorders `xs`.
-pub(crate) fn fronts(xs: &mut [Real]) -> (Real, Real) {
+fn fronts(xs: &mut [Real]) -> (Real, Real) {
     let Some(last) = xs.len().checked_sub(1) else {
         return (Real::NAN, Real::NAN);
     };

@@ -14,7 +14,6 @@ mod stages;
 use body_contact::BodyContactPlugin;
 use core::CorePlugin;
 use fronts::FrontsPlugin;
-pub(crate) use fronts::fronts;
 pub use fronts::{DepositColumn, DepositLog, FrontLog, FrontSample};
 use records::RecordsPlugin;
 use rigid_blocks::RigidBlocksPlugin;

@@ -29,7 +29,7 @@ pub use records::{
     BlockLog, BlockPartSample, BlockSample, BodyPairLog, BodyPairSample, EnergyLog, EnergySample,
     Probe, ProbeSample, Probes,
 };
-pub use settings::{Gravity, PositionUpdate, Settings, UpdateScheme};
+pub use settings::{GRANULAR_RELAXATION, Gravity, PositionUpdate, Settings, UpdateScheme};
 pub(crate) use shared_layers::SharedLayers;
 pub use stage_spec::{BlockVelocity, EdgeChanges, Side, StageEnd, StageSpec, SurfaceTraction};
 pub(crate) use stages::{AppliedLoad, StagePlan, StageProgress};

@@ -10,8 +10,10 @@
 //! reported without a verdict. One file per case; each states its
 //! tolerances and why.
 
+pub mod bui;
 pub mod collapse;
 pub mod dam_break;
+mod deposit_run;
 pub mod elastic_block;
 pub mod elastic_disk;
 pub mod footing;
@@ -316,9 +318,16 @@ pub const CASES: &[Case] = &[
         run: dam_break::run,
     },
     Case {
+        name: "granular_collapse_bui",
+        source: "Bui et al. 2008 (experiment)",
+        about: "plane-strain collapse of aluminium rods at the defaults, at three cells: the final surface and toe against the measured deposit",
+        minutes: 6.0,
+        run: bui::run,
+    },
+    Case {
         name: "column_collapse",
         source: "Lube et al. 2005",
-        about: "granular column collapse, H/L = 0.5, at the default transfer at two cells: run-out and final height against Lube et al.'s sand law",
+        about: "granular column collapse, H/L = 0.5, at the default transfer at two cells: the toe and final height against Lube et al.'s sand law",
         minutes: 30.0,
         run: collapse::run,
     },
