@@ -68,8 +68,13 @@ pub fn grid_to_particle(
         from_unconstrained,
     } = TransferOptions::new(&settings, clock.dt);
     for (mut points, mut travel, mut damped, layer, mut scratch, material) in &mut bodies {
-        let beta = settings.pic_fraction_for(material.model.as_model().granular(), dt);
+        let granular = material.model.as_model().granular();
+        let beta = settings.pic_fraction_for(granular, dt);
         let takes = takes || beta != 0.0;
+        // The relaxation pulls toward the velocity the points map to the
+        // nodes before the walls' constraints: the part of V_p the grid
+        // does not carry, not what a no-slip wall holds back.
+        let toward_free = settings.relaxes(granular) && !from_unconstrained;
         let TransferScratch {
             stencils,
             order: scatter_order,
@@ -133,10 +138,11 @@ pub fn grid_to_particle(
                 };
                 // The FLIP change's start: v^n, or p_i / m_i before the
                 // walls' constraints.
-                let start = if from_unconstrained {
-                    grid_old - held_back_at(stencil, held_back, origin, row_len)
-                } else {
-                    grid_old
+                let free_start = (from_unconstrained || toward_free)
+                    .then(|| grid_old - held_back_at(stencil, held_back, origin, row_len));
+                let start = match free_start {
+                    Some(free) if from_unconstrained => free,
+                    _ => grid_old,
                 };
                 // At α = 0 this is the undamped change, bit for bit.
                 let change = local_damping(grid_new - start, *v, alpha);
@@ -164,6 +170,7 @@ pub fn grid_to_particle(
                         new: grid_new,
                         change,
                         pic_change,
+                        pic_start: free_start.filter(|_| toward_free),
                     };
                     flip_pic_update(v, nodal, (beta, alpha), position_update, dt)
                 };
@@ -301,14 +308,17 @@ fn finish_the_remap(
 
 /// A point's interpolated nodal velocities: v^n, v^{n+1}, the FLIP change
 /// to v^{n+1} less particle damping (from v^n, or with
-/// `Settings::flip_from_unconstrained` from p_i / m_i), and the change from
-/// v^n less particle damping for the PIC term.
+/// `Settings::flip_from_unconstrained` from p_i / m_i), the change from
+/// v^n less particle damping for the PIC term, and under the granular
+/// relaxation the start of the PIC term, p_i / m_i interpolated (the PIC
+/// term is then that plus the change).
 #[derive(Clone, Copy)]
 struct NodalVelocities {
     old: DVec2,
     new: DVec2,
     change: DVec2,
     pic_change: DVec2,
+    pic_start: Option<DVec2>,
 }
 
 /// Eqs. 12a/12b: V^{n+1} = S v* + a_p Δt (`smoothed` is S v*), and the step
@@ -338,6 +348,7 @@ fn flip_pic_update(
         new,
         change,
         pic_change,
+        pic_start,
     } = nodal;
     let step = match update {
         Some(PositionUpdate::NewGridVelocity) => new * dt,
@@ -345,7 +356,11 @@ fn flip_pic_update(
         _ => (0.5 * (old + new) - 0.5 * beta * (*v - old)) * dt,
     };
     // Undamped, v^n + a_p Δt is v^{n+1} itself (kept exact).
-    let pic = if alpha == 0.0 { new } else { old + pic_change };
+    let pic = match pic_start {
+        Some(free) => free + pic_change,
+        None if alpha == 0.0 => new,
+        None => old + pic_change,
+    };
     *v = (1.0 - beta) * (*v + change) + beta * pic;
     step
 }

@@ -3,7 +3,7 @@
 //! `Settings::affine_transfer`), then the nodal velocity p_i / m_i.
 
 use crate::components::{
-    BodyAcceleration, BodyName, GridLayer, MassMomentumForce, MaterialPoints, NodeRect,
+    BodyAcceleration, BodyName, GridLayer, MassMomentumForce, Material, MaterialPoints, NodeRect,
     TransferScratch,
 };
 use crate::contact::ForceApplication;
@@ -30,12 +30,14 @@ type StepInputs<'w> = (
 /// the body's layer (b the body's own `BodyAcceleration`, if any, at the
 /// step's start time), makes the layers of a contact group their sum
 /// (`SharedLayers`), and sets the nodal velocity,
-/// constrained (with `Settings::flip_from_unconstrained`, keeping what the
-/// constraints took in `TransferScratch::held_back`). A point whose support leaves the grid is reported as a
+/// constrained (with `Settings::flip_from_unconstrained`, and for a body
+/// that takes the granular relaxation, keeping what the constraints took
+/// in `TransferScratch::held_back`). A point whose support leaves the grid is reported as a
 /// numerical failure and contributes nothing.
 ///
 /// Reads: `Grid`, `Settings`, `Gravity`, `ContactSettings`, `Clock`, `BodyName`,
-/// `BodyAcceleration`, `MaterialPoints`.
+/// `BodyAcceleration`, `MaterialPoints`, `Material` (whether the body is
+/// granular).
 /// Writes: `TransferScratch` (stencils, order, patches, held back), `GridLayer::nodes` (mass, momentum, external force, velocity),
 /// `SharedLayers` (scratch), `Diagnostics`.
 pub fn particle_to_grid(
@@ -48,6 +50,7 @@ pub fn particle_to_grid(
         &MaterialPoints,
         &mut GridLayer,
         &mut TransferScratch,
+        &Material,
     )>,
 ) {
     let nodes = grid.nodes();
@@ -55,7 +58,7 @@ pub fn particle_to_grid(
     let cell = grid.cell_size;
     let (kernel, g) = (settings.shape_function, gravity.0);
     let body_force = contact.force_application == ForceApplication::BodyForce;
-    for (name, own, points, mut layer, mut scratch) in &mut bodies {
+    for (name, own, points, mut layer, mut scratch, _) in &mut bodies {
         let g = g + own.map_or(DVec2::ZERO, |a| a.at(clock.time));
         let TransferScratch {
             stencils,
@@ -134,7 +137,7 @@ pub fn particle_to_grid(
     }
     shared.share(
         |entity, f| {
-            if let Ok((.., mut layer, _)) = bodies.get_mut(entity) {
+            if let Ok((.., mut layer, _, _)) = bodies.get_mut(entity) {
                 f(&mut layer);
             }
         },
@@ -149,7 +152,7 @@ pub fn particle_to_grid(
             n.external_force = sum.external_force;
         },
     );
-    for (.., mut layer, mut scratch) in &mut bodies {
+    for (.., mut layer, mut scratch, material) in &mut bodies {
         let cutoff = layer.mass_cutoff;
         layer.for_each_active(|n| {
             n.velocity = if n.mass > cutoff {
@@ -158,7 +161,9 @@ pub fn particle_to_grid(
                 DVec2::ZERO
             };
         });
-        if settings.flip_from_unconstrained {
+        if settings.flip_from_unconstrained
+            || settings.relaxes(material.model.as_model().granular())
+        {
             let held_back = &mut scratch.held_back;
             held_back.clear();
             held_back.resize(layer.nodes().len(), DVec2::ZERO);

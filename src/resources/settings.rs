@@ -130,17 +130,22 @@ pub struct Settings {
     /// the constrained velocities.
     pub flip_from_unconstrained: bool,
     /// Relaxation time τ (s) of a granular body's point velocities toward
-    /// the grid's velocity field. A granular body (Drucker–Prager,
-    /// Mohr–Coulomb) under the FLIP/PIC update with no PIC share named
-    /// (`pic_fraction` 0, no `xpic_order`) takes the PIC fraction
-    /// β = 1 − exp(−Δt/τ) each step: the part of its points' velocities
-    /// that the grid does not carry, which FLIP keeps undamped and which
-    /// throws the points of a flow's thin front and surface ahead of the
-    /// deposit, decays in a time τ, whatever the step. A rate, not a share
-    /// per step: β = 1% per step at Δt = 2.5e-5 s and half that at half the
-    /// step. Default `Some(2.5e-3)`; `None` leaves granular bodies under
-    /// pure FLIP. Other bodies, and every body when the scene names a PIC
-    /// share or an XPIC order, take the scene's update.
+    /// the velocity field they map to the grid. A granular body
+    /// (Drucker–Prager, Mohr–Coulomb) under the FLIP/PIC update with no PIC
+    /// share named (`pic_fraction` 0, no `xpic_order`) takes the PIC
+    /// fraction β = 1 − exp(−Δt/τ) each step, its PIC term started from the
+    /// nodal velocity p_i / m_i before the walls' constraints: the part of
+    /// its points' velocities that the grid does not carry, which FLIP
+    /// keeps undamped and which throws the points of a flow's thin front
+    /// and surface ahead of the deposit, decays in a time τ, whatever the
+    /// step, while a no-slip wall resists the body only through its
+    /// friction. A rate, not a share per step: β = 1% per step at
+    /// Δt = 2.5e-5 s and half that at half the step. Default
+    /// `Some(2.5e-3)`; `None` leaves granular bodies under pure FLIP. Other
+    /// bodies, and every body when the scene names a PIC share or an XPIC
+    /// order, take the scene's update. With `flip_from_unconstrained` the
+    /// PIC term starts from the constrained velocity, as the FLIP change
+    /// does.
     #[serde(deserialize_with = "crate::rules::de_option_positive")]
     pub granular_relaxation: Option<Real>,
 }
@@ -186,11 +191,20 @@ impl Settings {
     /// none, the one of [`Settings::granular_relaxation`].
     pub fn pic_fraction_for(&self, granular: bool, dt: Real) -> Real {
         match self.granular_relaxation {
-            Some(tau) if granular && self.pic_fraction == 0.0 && self.xpic_order.is_none() => {
-                -(-dt / tau).exp_m1()
-            }
+            Some(tau) if self.relaxes(granular) => -(-dt / tau).exp_m1(),
             _ => self.pic_fraction,
         }
+    }
+
+    /// Whether a body, `granular` or not, takes the granular relaxation:
+    /// its PIC fraction from [`Settings::granular_relaxation`], toward the
+    /// nodal velocity the points map to the grid before the walls'
+    /// constraints (see `grid_to_particle`).
+    pub fn relaxes(&self, granular: bool) -> bool {
+        granular
+            && self.granular_relaxation.is_some()
+            && self.pic_fraction == 0.0
+            && self.xpic_order.is_none()
     }
 
     /// Whether G2P maps the points' new velocities back to the nodes (ṽ):
