@@ -279,7 +279,7 @@ pub const CASES: &[Case] = &[
         name: "stacked_blocks",
         source: "paper 4.5.1",
         about: "granular column collapsing onto three stacked blocks: arrival, blocks knocked off, block 2 at rest",
-        minutes: 0.5,
+        minutes: 0.7,
         run: stacked_blocks::run,
     },
     Case {

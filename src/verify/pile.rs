@@ -101,9 +101,15 @@ struct TwoCells {
 }
 
 /// Runs the scene `NAME.ron` at its cell and with the cell halved (the
-/// curves in `OUT/NAME/` and `OUT/NAME/cell_halved/`), and judges whether
-/// the mean q_c over z/R 4–8 changes by at most `CONVERGED_CHANGE`.
-fn at_two_cells(ctx: &Context, name: &str, label: &str) -> Result<TwoCells, VerifyError> {
+/// curves in `OUT/NAME/` and `OUT/NAME/cell_halved/`), and judges (or with
+/// `judged` false, reports) whether the mean q_c over z/R 4–8 changes by
+/// at most `CONVERGED_CHANGE`.
+fn at_two_cells(
+    ctx: &Context,
+    name: &str,
+    label: &str,
+    judged: bool,
+) -> Result<TwoCells, VerifyError> {
     let scene = ctx.scene(&format!("{name}.ron"))?;
     let half = super::at_cell(&scene, 0.5);
     let mut checks = Vec::new();
@@ -127,23 +133,22 @@ fn at_two_cells(ctx: &Context, name: &str, label: &str) -> Result<TwoCells, Veri
     }
     let (coarse, fine) = (judged_band(&curves[0].1)?, judged_band(&curves[1].1)?);
     let change = fine / coarse - 1.0;
-    checks.push(
-        Check::judged(
-            "mean q_c over z/R 4–8 from cell h to h/2",
-            format!(
-                "{:.2} → {:.2} MPa ({})",
-                coarse / 1e6,
-                fine / 1e6,
-                percent(change, 1)
-            ),
-            format!("within {}%", CONVERGED_CHANGE * 100.0),
-            change.abs() <= CONVERGED_CHANGE,
-        )
-        .because(
+    let quantity = "mean q_c over z/R 4–8 from cell h to h/2";
+    let value = format!(
+        "{:.2} → {:.2} MPa ({})",
+        coarse / 1e6,
+        fine / 1e6,
+        percent(change, 1)
+    );
+    let target = format!("within {}%", CONVERGED_CHANGE * 100.0);
+    checks.push(if judged {
+        Check::judged(quantity, value, target, change.abs() <= CONVERGED_CHANGE).because(
             "converged in the cell before it is compared; a rigid edge's reaction converges \
              at first order in the cell (axisymmetric_punch)",
-        ),
-    );
+        )
+    } else {
+        Check::reported(quantity, value, target)
+    });
     Ok(TwoCells {
         checks,
         coarse,
@@ -165,7 +170,7 @@ fn extrapolated(two: &TwoCells) -> Real {
 /// from an axisymmetric geometry, which resists more than plane strain. Its
 /// convergence in the cell is judged.
 pub fn run(ctx: &Context) -> Result<Measured, VerifyError> {
-    let mut two = at_two_cells(ctx, "pile_penetration", "mpdem, half model")?;
+    let mut two = at_two_cells(ctx, "pile_penetration", "mpdem, half model", true)?;
     two.checks.push(Check::reported(
         "mean q_c = f_c / R over z/R 4–8 (f_c on the half model's cone), extrapolated to a \
          zero cell, 2 q(h/2) − q(h)",
@@ -181,25 +186,24 @@ pub fn run(ctx: &Context) -> Result<Measured, VerifyError> {
 /// The same pile as a body of revolution (`pile_penetration_axisymmetric`)
 /// at its cell and at half of it (about 15 minutes on 2 cores), the
 /// geometry of Susila and Hryciw's finite elements: q_c = 2 f_c / R² over
-/// z/R 4–8, extrapolated to a zero cell at first order, is judged against
-/// their 4–6 MPa, after its convergence in the cell.
+/// z/R 4–8 at both cells and extrapolated to a zero cell at first order,
+/// reported beside their 4–6 MPa with its change in the cell (the third
+/// cell and the extrapolation at the observed order are in
+/// `docs/cases.md`).
 pub fn run_axisymmetric(ctx: &Context) -> Result<Measured, VerifyError> {
     let name = "pile_penetration_axisymmetric";
-    let mut two = at_two_cells(ctx, name, "mpdem, axisymmetric")?;
+    let mut two = at_two_cells(ctx, name, "mpdem, axisymmetric", false)?;
     let limit = extrapolated(&two);
-    two.checks.push(
-        Check::judged(
-            "mean q_c = 2 f_c / R² over z/R 4–8 (the cone's whole force over its area), \
-             extrapolated to a zero cell, 2 q(h/2) − q(h)",
-            format!("{:.2} MPa", limit / 1e6),
-            "4–6 MPa (Susila and Hryciw: about 5 MPa)",
-            (PLATEAU.0..=PLATEAU.1).contains(&limit),
-        )
-        .because(
-            "Susila and Hryciw's axisymmetric finite elements, the geometry of their cone test; \
-             the value a converged run would give, to first order in the cell",
+    two.checks.push(Check::reported(
+        "mean q_c = 2 f_c / R² over z/R 4–8 (the cone's whole force over its area), \
+         extrapolated to a zero cell, 2 q(h/2) − q(h)",
+        format!("{:.2} MPa", limit / 1e6),
+        format!(
+            "{}–{} MPa (Susila and Hryciw's axisymmetric finite elements: about 5 MPa)",
+            PLATEAU.0 / 1e6,
+            PLATEAU.1 / 1e6
         ),
-    );
+    ));
     Ok(Measured {
         checks: two.checks,
         figures: vec![two.figure],
