@@ -23,6 +23,17 @@ type StepInputs<'w> = (
     Res<'w, Clock>,
 );
 
+/// The bodies' components that the particle-to-grid transfer reads and
+/// writes.
+type P2gData = (
+    &'static BodyName,
+    Option<&'static BodyAcceleration>,
+    &'static MaterialPoints,
+    &'static mut GridLayer,
+    &'static mut TransferScratch,
+    &'static Material,
+);
+
 /// Computes every point's stencil at x^n and the step's scatter order,
 /// scatters S_ip m_p, S_ip m_p V_p (with `Settings::affine_transfer`,
 /// S_ip m_p (V_p + C_p (x_i − x̄_p)), x̄_p = Σ_i S_ip x_i, x_p away from walls) and
@@ -44,14 +55,7 @@ pub fn particle_to_grid(
     (grid, settings, gravity, contact, clock): StepInputs,
     mut diagnostics: ResMut<Diagnostics>,
     mut shared: ResMut<SharedLayers>,
-    mut bodies: Query<(
-        &BodyName,
-        Option<&BodyAcceleration>,
-        &MaterialPoints,
-        &mut GridLayer,
-        &mut TransferScratch,
-        &Material,
-    )>,
+    mut bodies: Query<P2gData>,
 ) {
     let nodes = grid.nodes();
     let stencil_grid = grid.stencil_grid();
