@@ -1,15 +1,18 @@
 //! Adding a recorded quantity, in this one file: the height of each body's
-//! highest point, sampled with the probes, written to `heights.csv` while
-//! the run goes, and carried by checkpoints, so that a run stopped and
-//! resumed writes the same series as one that never stopped.
+//! highest point, sampled with the other records, written to `heights.csv`
+//! while the run goes and drawn as `heights.png` at its end, each point's
+//! rise as a field of the VTK frames, and the samples carried by
+//! checkpoints, so that a run stopped and resumed writes the same series as
+//! one that never stopped.
 //!
 //! Run with `cargo run --release --example recorded_quantity`.
 
 use mpdem::checkpoint::{Checkpointed, TimeRecord};
 use mpdem::components::BodyIndex;
 use mpdem::io::csv::CsvSeries;
+use mpdem::io::figure::{Curve, Figure, FigureContext};
 use mpdem::prelude::*;
-use mpdem::resources::UpdateScheme;
+use mpdem::resources::{Sampling, UpdateScheme};
 use mpdem::runner::{RunError, RunOptions, Runner, Start};
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -52,11 +55,11 @@ fn sample<'a>(
 /// Samples every body's top on the steps the engine samples its records.
 fn record_heights(
     clock: Res<Clock>,
-    probes: Res<Probes>,
+    sampling: Res<Sampling>,
     bodies: Query<(&BodyIndex, &MaterialPoints)>,
     mut heights: ResMut<Heights>,
 ) {
-    if probes.due(&clock) {
+    if sampling.due(&clock) {
         sample(&mut heights, clock.time, bodies.iter());
     }
 }
@@ -103,7 +106,36 @@ impl CsvSeries for Heights {
     }
 }
 
-/// The whole feature: its resource, its record and its system.
+/// `heights.png`: each body's top against time.
+fn heights_figure(heights: &Heights, context: &FigureContext) -> Vec<Figure> {
+    let curves = context
+        .bodies
+        .iter()
+        .enumerate()
+        .map(|(k, name)| {
+            let of_body = heights.samples.iter().filter(move |h| h.body == k);
+            Curve::new(name.as_str(), of_body.map(|h| (h.time, h.top)))
+        })
+        .collect();
+    vec![Figure {
+        file: "heights.png".into(),
+        title: "Top of each body".into(),
+        x_label: "time (s)".into(),
+        y_label: "height (m)".into(),
+        curves,
+    }]
+}
+
+/// The field `rise` of the VTK frames: how far each point of a body has
+/// risen above where it started (m).
+fn rise(world: &World, body: Entity, column: &mut Vec<Real>) {
+    if let Some(points) = world.get::<MaterialPoints>(body) {
+        column.extend((0..points.len()).map(|p| points.displacement(p).y));
+    }
+}
+
+/// The whole feature: its resource, its record, its figure, its field of
+/// the frames and its system.
 struct HeightsPlugin;
 
 impl MpmPlugin for HeightsPlugin {
@@ -117,6 +149,8 @@ impl MpmPlugin for HeightsPlugin {
         sample(&mut heights, 0.0, query.iter(setup.world));
         setup.world.insert_resource(heights);
         setup.record::<Heights>("heights", "heights.csv");
+        setup.plot::<Heights>(heights_figure);
+        setup.point_field("rise", rise);
         Ok(())
     }
 
@@ -165,6 +199,10 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
     let read = |dir: &std::path::Path| std::fs::read_to_string(dir.join("heights.csv"));
     let (whole, resumed) = (read(&straight)?, read(&stopped)?);
     println!("{whole}");
+    let frame = std::fs::read_to_string(straight.join("vtk/points_00000.vtu"))?;
+    if !straight.join("heights.png").is_file() || !frame.contains(r#"Name="rise""#) {
+        return Err("the figure and the frames' field are written".into());
+    }
     std::fs::remove_dir_all(&temp)?;
     if whole != resumed {
         return Err("the resumed run's heights.csv differs from the straight run's".into());

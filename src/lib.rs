@@ -9,8 +9,6 @@
 #![doc = include_str!("../docs/architecture.md")]
 #![deny(missing_docs)]
 
-#[doc(hidden)]
-pub mod bench;
 pub mod checkpoint;
 pub mod components;
 pub mod contact;
@@ -31,13 +29,14 @@ pub(crate) mod scatter;
 pub mod scene;
 pub mod shape_functions;
 mod simulation;
-#[doc(hidden)]
-pub mod verify;
+
+pub mod warning;
 
 #[path = "../systems/mod.rs"]
 pub mod systems;
 
 pub use simulation::{PluginError, Simulation, StepError};
+pub use warning::{Warning, WarningKind};
 
 /// The common imports of a user of the library.
 pub mod prelude {
@@ -47,6 +46,6 @@ pub mod prelude {
     pub use crate::resources::{Clock, Gravity, Grid, Probes, Settings};
     pub use crate::scene::Scene;
     pub use crate::systems::{MpmSchedule, MpmSystems};
-    pub use crate::{PluginError, Simulation, StepError};
+    pub use crate::{PluginError, Simulation, StepError, Warning, WarningKind};
     pub use bevy_ecs::prelude::*;
 }

@@ -113,13 +113,13 @@ impl std::ops::Mul<Real> for SymTensor {
 
 /// The symmetric part of an in-plane velocity gradient `l` (the rate of
 /// deformation D; plane strain, so D_zz = 0).
-pub(crate) fn rate_of_deformation(l: DMat2) -> SymTensor {
+pub fn rate_of_deformation(l: DMat2) -> SymTensor {
     SymTensor::new(l.x_axis.x, l.y_axis.y, 0.5 * (l.y_axis.x + l.x_axis.y), 0.0)
 }
 
 /// The spin (skew part) of an in-plane velocity gradient `l`, as the single
 /// independent component W_xy = ½(L_xy − L_yx).
-pub(crate) fn spin(l: DMat2) -> Real {
+pub fn spin(l: DMat2) -> Real {
     // glam is column-major: l.y_axis.x is L_xy (row x, column y).
     0.5 * (l.y_axis.x - l.x_axis.y)
 }
@@ -128,7 +128,7 @@ pub(crate) fn spin(l: DMat2) -> Real {
 /// `f` acting on something moving at `v`: each component less α |f_c|
 /// sign(v_c), sign(0) = 0 so that a body at rest feels the whole force.
 #[inline(always)]
-pub(crate) fn local_damping(f: DVec2, v: DVec2, alpha: Real) -> DVec2 {
+pub fn local_damping(f: DVec2, v: DVec2, alpha: Real) -> DVec2 {
     let sign = |x: Real| {
         if x > 0.0 {
             1.0
@@ -142,7 +142,7 @@ pub(crate) fn local_damping(f: DVec2, v: DVec2, alpha: Real) -> DVec2 {
 }
 
 /// The outer product a ⊗ b as a matrix whose entry (row i, column j) is a_i b_j.
-pub(crate) fn outer(a: DVec2, b: DVec2) -> DMat2 {
+pub fn outer(a: DVec2, b: DVec2) -> DMat2 {
     DMat2::from_cols(a * b.x, a * b.y)
 }
 

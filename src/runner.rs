@@ -18,9 +18,11 @@ use crate::checkpoint::CheckpointError;
 use crate::io::RunOutput;
 use crate::io::manifest::written_by;
 use crate::math::Real;
+use crate::plugins::DefaultPlugins;
 use crate::resources::{EnergyLog, EnergySample, StageLog, StagePlan};
 use crate::scene::{Scene, SceneError, whole_steps};
-use crate::simulation::Simulation;
+use crate::simulation::{PluginError, Simulation};
+use crate::warning::Warning;
 use std::cell::Cell;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -82,6 +84,9 @@ pub enum RunError {
     /// The scene could not be built.
     #[error("{0}")]
     Scene(#[from] SceneError),
+    /// The plugins asked for cannot make a simulation.
+    #[error("{0}")]
+    Plugins(PluginError),
     /// The checkpoint could not be read or written.
     #[error("{0}")]
     Checkpoint(#[from] CheckpointError),
@@ -213,7 +218,7 @@ pub struct Progress<'a> {
     pub notices: &'a [String],
     /// Warnings the run found while stepping since the last report (see
     /// [`Simulation::step_warnings`]); a new one brings a report forward.
-    pub warnings: &'a [String],
+    pub warnings: &'a [Warning],
     /// Whether the stepping is over and the run is writing its results (the
     /// last frame, the collections, the CSV files, the plots and the
     /// animation), which can take a while: the last report.
@@ -261,6 +266,17 @@ impl Runner {
         source: Option<&Path>,
         options: RunOptions,
     ) -> Result<Self, RunError> {
+        Self::with_plugins(scene, source, options, DefaultPlugins::default())
+    }
+
+    /// As [`Runner::new`], with the built-in plugins changed as `plugins`
+    /// says (see [`Simulation::with_plugins`]).
+    pub fn with_plugins(
+        scene: &Scene,
+        source: Option<&Path>,
+        options: RunOptions,
+        plugins: DefaultPlugins,
+    ) -> Result<Self, RunError> {
         if let Some(t) = options.checkpoint_every
             && !(t.is_finite() && t > 0.0)
         {
@@ -299,7 +315,11 @@ impl Runner {
                 });
             }
         }
-        let sim = Simulation::from_scene(scene)?;
+        let sim = match Simulation::with_plugins(scene, plugins) {
+            Ok(sim) => sim,
+            Err(PluginError::Build(e)) => return Err(e.into()),
+            Err(e) => return Err(RunError::Plugins(e)),
+        };
         Ok(Self {
             scene: scene.clone(),
             notices: checkpoint_notices(options.checkpoint_every, sim.clock().dt),
@@ -322,15 +342,24 @@ impl Runner {
     }
 
     /// The scene's warnings (see [`Simulation::warnings`]).
-    pub fn warnings(&self) -> &[String] {
+    pub fn warnings(&self) -> &[Warning] {
         self.sim.warnings()
     }
 
     /// What the run has to say besides its warnings: where it resumed, the
     /// files of an earlier run it removed, gaps in resumed frames, the
-    /// stages' warnings at the end.
+    /// bodies still moving at the end.
     pub fn notices(&self) -> &[String] {
         &self.notices
+    }
+
+    /// The stages' warnings of the run, once it has ended: a stage that
+    /// reached its max_time, or that time.end cut short.
+    pub fn stage_warnings(&self) -> &[Warning] {
+        self.sim
+            .world()
+            .get_resource::<StageLog>()
+            .map_or(&[], |log| &log.warnings)
     }
 
     /// The output folder.
@@ -423,13 +452,6 @@ impl Runner {
             }
         }
         report(sim, true, &mut progress);
-        self.notices.extend(
-            sim.world()
-                .resource::<StageLog>()
-                .warnings
-                .iter()
-                .map(|w| format!("warning: {w}")),
-        );
         // A stopped run's checkpoint first: it matters more than the plots.
         let now = sim.clock();
         let stopped = failure.is_none() && !now.finished();
@@ -454,8 +476,9 @@ impl Runner {
                 checkpoint: stop_checkpoint,
             });
         }
-        let energy = &sim.world().resource::<EnergyLog>().samples;
-        self.notices.extend(still_moving_notice(energy));
+        if let Some(energy) = sim.world().get_resource::<EnergyLog>() {
+            self.notices.extend(still_moving_notice(&energy.samples));
+        }
         Ok(RunSummary {
             name: sim.name().to_owned(),
             steps: now.step,

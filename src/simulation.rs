@@ -6,15 +6,19 @@ use crate::components::{
     BlockId, BodyName, MaterialPoints, Pose, RigidVelocity, bodies_in_scene_order,
 };
 use crate::io::csv::CsvRecord;
+use crate::io::figure::FigureRecord;
+use crate::io::vtk::PointFieldRecord;
 use crate::math::Real;
-use crate::plugins::{DEFAULT_PLUGINS, MpmPlugin, PluginSetup, Registries};
+use crate::plugins::{CorePlugin, DefaultPlugins, MpmPlugin, PluginSetup, Registries};
 use crate::resources::{Clock, Diagnostics, NumericalFailure};
 use crate::scene::{Scene, SceneError, spawn_scene};
 use crate::systems::build_schedule;
+use crate::warning::Warning;
 use bevy_ecs::prelude::*;
 use bevy_ecs::system::ScheduleSystem;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
+use std::any::{Any, TypeId};
 use std::path::Path;
 
 /// Why a step could not be taken.
@@ -38,6 +42,14 @@ pub enum PluginError {
     /// Its systems make the schedule invalid.
     #[error(transparent)]
     Step(#[from] StepError),
+    /// A plugin of this type is in the simulation already.
+    #[error("the plugin {0} is added twice: a simulation holds each plugin once")]
+    Duplicate(String),
+    /// The plugins do not include the core of the step.
+    #[error(
+        "the plugins must include mpdem::plugins::CorePlugin (or a replacement for it): it holds the step itself"
+    )]
+    NoCore,
 }
 
 /// A running simulation: the ECS world (bodies, grid, clock, records) and
@@ -62,6 +74,8 @@ pub struct Simulation {
     registries: Registries,
     /// The scene's fingerprint, which a checkpoint must match.
     fingerprint: SceneFingerprint,
+    /// The types of the plugins added, each once.
+    plugins: Vec<TypeId>,
 }
 
 impl Simulation {
@@ -70,8 +84,23 @@ impl Simulation {
         Self::from_scene(&Scene::load(path)?)
     }
 
-    /// Validates and spawns a scene (e.g. one built in code).
+    /// Validates and spawns a scene (e.g. one built in code), with the
+    /// built-in plugins.
     pub fn from_scene(scene: &Scene) -> Result<Self, SceneError> {
+        match Self::with_plugins(scene, DefaultPlugins::default()) {
+            Ok(sim) => Ok(sim),
+            Err(PluginError::Build(e)) => Err(e),
+            Err(e) => unreachable!("the built-in plugins are each added once: {e}"),
+        }
+    }
+
+    /// Validates and spawns a scene with `plugins`: the built-in ones, of
+    /// which some may be disabled or replaced (see [`DefaultPlugins`]).
+    /// Refused if a plugin type comes twice, or without the core.
+    pub fn with_plugins(scene: &Scene, plugins: DefaultPlugins) -> Result<Self, PluginError> {
+        if !plugins.contains::<CorePlugin>() {
+            return Err(PluginError::NoCore);
+        }
         scene.validate()?;
         let spawned = spawn_scene(scene)?;
         let mut sim = Self {
@@ -84,8 +113,12 @@ impl Simulation {
                 ..Registries::default()
             },
             fingerprint: SceneFingerprint::of(scene),
+            plugins: Vec::new(),
         };
-        for plugin in DEFAULT_PLUGINS {
+        for (place, plugin) in plugins.iter() {
+            if place != (plugin as &dyn Any).type_id() {
+                sim.plugins.push(place);
+            }
             sim.build_plugin(plugin)?;
             plugin.add_systems(&mut sim.schedule, scene.settings.scheme);
         }
@@ -93,14 +126,20 @@ impl Simulation {
         Ok(sim)
     }
 
-    fn build_plugin(&mut self, plugin: &dyn MpmPlugin) -> Result<(), SceneError> {
+    /// Builds `plugin` into the world, refusing a plugin type added before.
+    fn build_plugin(&mut self, plugin: &dyn MpmPlugin) -> Result<(), PluginError> {
+        let id = (plugin as &dyn Any).type_id();
+        if self.plugins.contains(&id) {
+            return Err(PluginError::Duplicate(plugin.name().to_string()));
+        }
+        self.plugins.push(id);
         let mut setup = PluginSetup::new(
             &self.scene,
             &mut self.world,
             &mut self.registries,
             &mut self.absent_blocks,
         );
-        plugin.build(&mut setup)
+        Ok(plugin.build(&mut setup)?)
     }
 
     /// Builds the scene, then puts into it the state of the checkpoint at
@@ -205,13 +244,13 @@ impl Simulation {
     }
 
     /// Warnings found while building (e.g. a time step above the CFL limit).
-    pub fn warnings(&self) -> &[String] {
+    pub fn warnings(&self) -> &[Warning] {
         &self.registries.warnings
     }
 
     /// Warnings found while stepping, in the order found (e.g. a point
     /// grown too loose for the time step); the run goes on after them.
-    pub fn step_warnings(&self) -> &[String] {
+    pub fn step_warnings(&self) -> &[Warning] {
         &self.world.resource::<Diagnostics>().warnings
     }
 
@@ -234,6 +273,21 @@ impl Simulation {
     /// registered.
     pub(crate) fn csv_records(&self) -> &[CsvRecord] {
         &self.registries.records
+    }
+
+    /// The records' figures, in the order they were registered.
+    pub(crate) fn figure_records(&self) -> &[FigureRecord] {
+        &self.registries.figures
+    }
+
+    /// The plugins' scalar fields of the VTK frames.
+    pub(crate) fn point_fields(&self) -> &[PointFieldRecord] {
+        &self.registries.point_fields
+    }
+
+    /// The scene the simulation was built from.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
     }
 
     /// The ECS world: bodies, resources and records.
@@ -267,6 +321,9 @@ impl Simulation {
     /// records), then adds its systems to the step; like
     /// [`Simulation::add_systems`], an ambiguous addition is reported here.
     /// Add plugins before the first step and before restoring a checkpoint.
+    /// A plugin type added before (a built-in one included) is refused
+    /// ([`PluginError::Duplicate`]); to change a built-in plugin, build
+    /// with [`Simulation::with_plugins`].
     pub fn add_plugin(&mut self, plugin: &dyn MpmPlugin) -> Result<(), PluginError> {
         self.build_plugin(plugin)?;
         plugin.add_systems(&mut self.schedule, self.scene.settings.scheme);

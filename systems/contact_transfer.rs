@@ -34,7 +34,7 @@ pub fn transfer_contact_forces(
     (grid, settings, numerics): (Res<Grid>, Res<ContactSettings>, Res<Settings>),
     mut order: Local<Vec<(u32, Entity)>>,
     blocks: Query<(Entity, &BlockId, &BlockContacts)>,
-    body_contacts: Res<BodyContacts>,
+    body_contacts: Option<Res<BodyContacts>>,
     mut body_order: Local<Vec<(BodyIndex, Entity)>>,
     mut bodies: Query<(Entity, &BodyIndex, &MaterialPoints, &mut GridLayer)>,
 ) {
@@ -72,9 +72,9 @@ pub fn transfer_contact_forces(
             }
         }
     }
-    if body_contacts.current.is_empty() {
+    let Some(body_contacts) = body_contacts.filter(|c| !c.current.is_empty()) else {
         return;
-    }
+    };
     sort_into_scene_order(&mut body_order, bodies.iter().map(|(e, i, ..)| (*i, e)));
     for contact in &body_contacts.current {
         for (body, point, sign) in [(contact.a, contact.p, 1.0), (contact.b, contact.q, -1.0)] {

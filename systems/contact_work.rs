@@ -35,7 +35,7 @@ use bevy_ecs::prelude::*;
 pub fn account_contact_work(
     clock: Res<Clock>,
     mut work: ResMut<ContactWork>,
-    body_contacts: Res<BodyContacts>,
+    body_contacts: Option<Res<BodyContacts>>,
     mut order: Local<Vec<(u32, Entity)>>,
     mut slots: Local<Vec<Option<Entity>>>,
     bodies: Query<(Entity, &BodyIndex, &MaterialPoints)>,
@@ -60,7 +60,7 @@ pub fn account_contact_work(
             by_blocks += c.force.dot(surface_moved);
         }
     }
-    if !body_contacts.current.is_empty() {
+    if let Some(body_contacts) = body_contacts.filter(|c| !c.current.is_empty()) {
         slots.clear();
         for (entity, index, _) in bodies.iter() {
             let k = index.0 as usize;

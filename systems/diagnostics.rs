@@ -4,13 +4,12 @@ use crate::components::{
     BlockContacts, BlockId, BodyIndex, BodyName, DampedEnergy, Material, MaterialPoints,
     PartReactions, PointEnergies, Pose, Reaction, RigidVelocity, sort_into_scene_order,
 };
-use crate::materials::MaterialModel;
 use crate::math::DVec2;
 use crate::parallel::MIN_POINTS_PER_TASK;
 use crate::resources::{
     BlockLog, BodyContacts, BodyPairLog, BodyPairSample, Clock, ContactWork, Diagnostics,
     EnergyLog, EnergySample, Gravity, LoadWork, MAX_CONTACT_BODIES, NumericalFailure, PairTally,
-    Probes, Settings,
+    Probes, Sampling, Settings,
 };
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
@@ -53,11 +52,8 @@ pub fn check_finite(
 /// For a granular material that is never disconnected, what often breaks
 /// it and the option against it; nothing for other materials.
 fn granular_hint(material: &Material) -> &'static str {
-    let never_disconnected = match &material.model {
-        MaterialModel::DruckerPrager(m) => m.disconnected_above.is_none(),
-        MaterialModel::MohrCoulomb(m) => m.disconnected_above.is_none(),
-        _ => false,
-    };
+    let model = material.model.as_model();
+    let never_disconnected = model.granular() && !model.disconnects_loose_points();
     if never_disconnected {
         "; in a granular flow, points stretched far beyond their placed volume and then squeezed can do this: the material's `disconnected_above: Some(1.0)` lets points looser than placed carry no stress"
     } else {
@@ -118,30 +114,23 @@ type EnergyScratch = (
     Vec<(u32, Entity)>,
 );
 
-/// Whether this step is sampled: every `Probes::every` steps, and the
-/// run's last step (its end, or where its last stage ended it), so the
-/// series end with the state the run ends in. Steps taken past the end
-/// (`Simulation::step` does not stop there) keep the interval.
-fn sample_due(clock: &Clock, probes: &Probes) -> bool {
-    probes.due(clock)
-}
-
-/// Records probes and energies at the steps `sample_due` picks, unless the step
-/// failed (a broken state is never recorded).
+/// Records probes and energies at the steps `Sampling` picks, unless the step
+/// failed (a broken state is never recorded). The contact and load terms
+/// count from the plugins that are built.
 ///
-/// Reads: `Clock`, `Diagnostics`, `Gravity`, `Settings::geometry`, `MaterialPoints`, `Material`,
+/// Reads: `Clock`, `Sampling`, `Diagnostics`, `Gravity`, `Settings::geometry`, `MaterialPoints`, `Material`,
 /// `BodyIndex`, `BodyContacts`, `BlockContacts` (the contact springs'
 /// energy), `ContactWork`, `LoadWork`, `DampedEnergy`. Writes: `Probes`,
 /// `EnergyLog`.
 #[allow(clippy::too_many_arguments)] // one resource or query per energy term
 pub fn record_probes_and_energy(
-    clock: Res<Clock>,
+    (clock, sampling): (Res<Clock>, Res<Sampling>),
     diagnostics: Res<Diagnostics>,
     (gravity, settings): (Res<Gravity>, Res<Settings>),
     mut probes: ResMut<Probes>,
     mut energy: ResMut<EnergyLog>,
-    body_contacts: Res<BodyContacts>,
-    (work, load_work): (Res<ContactWork>, Res<LoadWork>),
+    body_contacts: Option<Res<BodyContacts>>,
+    (work, load_work): (Option<Res<ContactWork>>, Option<Res<LoadWork>>),
     mut scratch: Local<EnergyScratch>,
     bodies: Query<(
         Entity,
@@ -152,7 +141,7 @@ pub fn record_probes_and_energy(
     )>,
     blocks: Query<(Entity, &BlockId, &BlockContacts)>,
 ) {
-    if diagnostics.failure.is_some() || !sample_due(&clock, &probes) {
+    if diagnostics.failure.is_some() || !sampling.due(&clock) {
         return;
     }
     let (order, sums, block_order) = &mut *scratch;
@@ -168,7 +157,7 @@ pub fn record_probes_and_energy(
     );
     sample.damped = ordered().map(|b| b.4.0).sum();
     sort_into_scene_order(block_order, blocks.iter().map(|(e, id, ..)| (id.index, e)));
-    let (mut springs, mut tangential) = body_contacts.spring_energies();
+    let (mut springs, mut tangential) = body_contacts.map_or((0.0, 0.0), |c| c.spring_energies());
     for (_, _, contacts) in block_order.iter().filter_map(|(_, e)| blocks.get(*e).ok()) {
         for c in &contacts.current {
             springs += c.potential;
@@ -176,28 +165,30 @@ pub fn record_probes_and_energy(
         }
     }
     sample.contact = springs;
-    sample.dissipated = -work.tangential_work - tangential;
-    sample.blocks = -work.block_work;
-    sample.loads = -load_work.work;
+    let (tangential_work, block_work) =
+        work.map_or((0.0, 0.0), |w| (w.tangential_work, w.block_work));
+    sample.dissipated = -tangential_work - tangential;
+    sample.blocks = -block_work;
+    sample.loads = -load_work.map_or(0.0, |w| w.work);
     energy.samples.push(sample);
 }
 
 /// Records the contacts of every pair of bodies with a law (resultant,
 /// count, zone half-width, now and in the undeformed bodies) when the
-/// probes are sampled (`sample_due`), unless the step failed.
+/// records sample (`Sampling`), unless the step failed.
 ///
-/// Reads: `Clock`, `Diagnostics`, `Probes::every`, `BodyContacts`,
+/// Reads: `Clock`, `Diagnostics`, `Sampling`, `BodyContacts`,
 /// `BodyIndex`, `MaterialPoints::initial_position`. Writes: `BodyPairLog`.
 pub fn record_body_pairs(
     clock: Res<Clock>,
     diagnostics: Res<Diagnostics>,
-    probes: Res<Probes>,
+    sampling: Res<Sampling>,
     contacts: Res<BodyContacts>,
     bodies: Query<(&BodyIndex, &MaterialPoints)>,
     mut log: ResMut<BodyPairLog>,
     mut tallies: Local<Vec<PairTally>>,
 ) {
-    if diagnostics.failure.is_some() || !sample_due(&clock, &probes) {
+    if diagnostics.failure.is_some() || !sampling.due(&clock) {
         return;
     }
     let time = clock.time;
@@ -231,13 +222,13 @@ pub fn record_body_pairs(
 }
 
 /// Records every block's reaction, pose and velocity when the probes are
-/// sampled (`sample_due`), blocks in scene order, unless the step failed.
+/// sampled (`Sampling`), blocks in scene order, unless the step failed.
 ///
-/// Reads: `Clock`, `Diagnostics`, `Probes::every`, block components. Writes: `BlockLog`.
+/// Reads: `Clock`, `Diagnostics`, `Sampling`, block components. Writes: `BlockLog`.
 pub fn record_blocks(
     clock: Res<Clock>,
     diagnostics: Res<Diagnostics>,
-    probes: Res<Probes>,
+    sampling: Res<Sampling>,
     mut log: ResMut<BlockLog>,
     mut order: Local<Vec<(u32, Entity)>>,
     blocks: Query<(
@@ -249,7 +240,7 @@ pub fn record_blocks(
         &RigidVelocity,
     )>,
 ) {
-    if blocks.is_empty() || diagnostics.failure.is_some() || !sample_due(&clock, &probes) {
+    if blocks.is_empty() || diagnostics.failure.is_some() || !sampling.due(&clock) {
         return;
     }
     sort_into_scene_order(&mut order, blocks.iter().map(|(e, id, ..)| (id.index, e)));
@@ -264,7 +255,7 @@ pub fn record_blocks(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::materials::{DruckerPrager, LinearElastic};
+    use crate::materials::{DruckerPrager, LinearElastic, MaterialModel};
 
     #[test]
     fn a_granular_material_that_never_disconnects_gets_the_hint() {

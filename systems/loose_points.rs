@@ -14,6 +14,7 @@ use crate::components::{BodyIndex, BodyName, Material, MaterialPoints, sort_into
 use crate::math::Real;
 use crate::parallel::MIN_POINTS_PER_TASK;
 use crate::resources::{Clock, Diagnostics, Grid};
+use crate::warning::{Warning, WarningKind};
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
@@ -62,10 +63,10 @@ pub fn check_loose_points(
         warned.push(entity);
         let stable = grid.cell_size / (wave_speed * ratio.sqrt());
         let at = points.position[p];
-        diagnostics.warnings.push(format!(
+        diagnostics.warnings.push(Warning::new(WarningKind::TimeStep, format!("bodies[\"{}\"]", name.0), format!(
             "step {} (t = {:.6e} s): body '{}', point {p} at ({:.4}, {:.4}) carries stress at {ratio:.3} times its placed volume; at that density its elastic wave crosses a cell in h / (c sqrt(V/V0)) = {stable:.3e} s, less than time.dt = {:e} s, so the run may blow up. A material that dilates without end under shear (dilation_angle > 0) does this, as does a point stretched loose and squeezed again: `disconnected_above` takes the stress off points looser than a critical density, and a smaller time.dt follows the point further",
             clock.step, clock.time, name.0, at.x, at.y, clock.dt
-        ));
+        )));
     }
 }
 

@@ -12,6 +12,7 @@ use crate::resources::{
 };
 use crate::resources::{ContactSettings, Side, StageEnd};
 use crate::rigid::{PlacementChecks, placement_warnings};
+use crate::warning::{Warning, WarningKind};
 use bevy_ecs::prelude::*;
 use std::collections::BTreeMap;
 
@@ -146,12 +147,12 @@ fn finish_stage(world: &mut World, plan: &mut StagePlan, reason: StageEndReason)
         reason,
     });
     match reason {
-        StageEndReason::MaxTime => log.warnings.push(format!(
+        StageEndReason::MaxTime => log.warnings.push(Warning::new(WarningKind::Stage, format!("stages[\"{}\"].end", stage.name), format!(
             "stage '{}' reached its max_time of {} s at t = {} s without meeting its end condition",
             stage.name,
             stage.end.max_time(),
             clock.time
-        )),
+        ))),
         StageEndReason::SceneEnd => {
             let later = plan.stages.len() - 1 - plan.progress.current;
             let rest = match later {
@@ -167,8 +168,11 @@ fn finish_stage(world: &mut World, plan: &mut StagePlan, reason: StageEndReason)
                     stage.name
                 )
             };
-            log.warnings
-                .push(format!("time.end = {} s came {cut}{rest}", clock.end));
+            log.warnings.push(Warning::new(
+                WarningKind::Stage,
+                "time.end",
+                format!("time.end = {} s came {cut}{rest}", clock.end),
+            ));
         }
         StageEndReason::Duration | StageEndReason::Condition => {}
     }
@@ -189,7 +193,7 @@ fn finish_stage(world: &mut World, plan: &mut StagePlan, reason: StageEndReason)
 
 /// Enters stage `index`: applies its changes to the world and starts its
 /// clock. Returns warnings (e.g. an added block overlapping a body).
-pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec<String> {
+pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec<Warning> {
     let mut warnings = Vec::new();
     let spec = plan.stages[index].clone();
     {
@@ -220,7 +224,11 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
     let bodies = bodies_in_scene_order(world);
     let checks = PlacementChecks {
         dt: world.resource::<Clock>().dt,
-        penetration: world.resource::<ContactSettings>().penetration,
+        // The blocks' contact settings, or their defaults for a stage's
+        // blocks without the rigid blocks' plugin.
+        penetration: world
+            .get_resource::<ContactSettings>()
+            .map_or_else(|| ContactSettings::default().penetration, |c| c.penetration),
         geometry: world.resource::<Settings>().geometry,
     };
     for name in &spec.add_blocks {
@@ -265,10 +273,10 @@ pub fn enter_stage(world: &mut World, plan: &mut StagePlan, index: usize) -> Vec
             })
         };
         if geometry == Geometry::Axisymmetric && traction.side == Side::Left && on_axis() {
-            warnings.push(format!(
+            warnings.push(Warning::new(WarningKind::Stage, format!("stages[\"{}\"].tractions", spec.name), format!(
                 "stage '{}': the Left side of body '{}' lies on the axis, where it has no area: its traction loads nothing",
                 spec.name, traction.body
-            ));
+            )));
         }
         plan.progress.loads.push(AppliedLoad {
             body,

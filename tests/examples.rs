@@ -1,6 +1,7 @@
 //! Every example runs to its end without an error: one per extension
 //! point (a user system, a constitutive model defined outside the crate,
-//! a recorded quantity added by a plugin, a scene
+//! a recorded quantity added by a plugin, the built-in plugins disabled
+//! and replaced, a scene
 //! built in code, stages, resuming from a checkpoint, running with the
 //! outputs from a program).
 
@@ -8,6 +9,8 @@
 mod custom_model;
 #[path = "../examples/custom_system.rs"]
 mod custom_system;
+#[path = "../examples/plugin_group.rs"]
+mod plugin_group;
 #[path = "../examples/recorded_quantity.rs"]
 mod recorded_quantity;
 #[path = "../examples/resume.rs"]
@@ -23,6 +26,11 @@ mod stages;
 fn a_constitutive_model_defined_outside_the_crate() {
     custom_model::main()
         .expect("the example runs and its points stay on or inside the yield surface");
+}
+
+#[test]
+fn the_built_in_plugins_changed() {
+    plugin_group::main().expect("the records disabled, the core replaced, duplicates refused");
 }
 
 #[test]

@@ -38,7 +38,12 @@ fn a_point_too_loose_for_the_step_is_warned_of_once() {
     sim.step().unwrap();
     let warnings = sim.step_warnings().to_vec();
     assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert_eq!(
+        (warnings[0].kind, warnings[0].field.as_str()),
+        (WarningKind::TimeStep, "bodies[\"column\"]")
+    );
     let ratio: Real = warnings[0]
+        .message
         .split("carries stress at ")
         .nth(1)
         .and_then(|rest| rest.split(' ').next())
@@ -47,8 +52,8 @@ fn a_point_too_loose_for_the_step_is_warned_of_once() {
     // One step after the loosening: the column's motion moved it a little.
     assert!((ratio - 12.0).abs() < 0.05, "{ratio}");
     assert!(
-        warnings[0].contains("body 'column', point 40 ")
-            && warnings[0].contains("disconnected_above"),
+        warnings[0].message.contains("body 'column', point 40 ")
+            && warnings[0].message.contains("disconnected_above"),
         "{}",
         warnings[0]
     );

@@ -40,7 +40,7 @@ pub(crate) use kept_state::{KeptState, StoredState};
 pub(crate) use state_hash::StateHasher;
 
 use crate::math::Real;
-use crate::resources::{Clock, Probes, StagePlan};
+use crate::resources::{Clock, Sampling, StagePlan};
 use crate::scene::{OutputSpec, Scene, SceneError, Shape};
 use bevy_ecs::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -146,7 +146,7 @@ pub enum FormatProblem {
 
 /// The layout of the stored state; a checkpoint of another layout is
 /// refused rather than misread (CHANGELOG.md names what each changed).
-const FORMAT: u32 = 18;
+const FORMAT: u32 = 19;
 
 impl CheckpointError {
     /// The error, naming the checkpoint file `path` where it names a file.
@@ -515,7 +515,7 @@ fn capture(world: &mut World, fingerprint: &SceneFingerprint, kept: Vec<StoredSt
         step: world.resource::<Clock>().step,
         bodies,
         blocks,
-        sample_every: world.resource::<Probes>().every,
+        sample_every: sample_every(world),
         kept,
     }
 }
@@ -552,13 +552,18 @@ fn apply(
     Ok(())
 }
 
+/// The steps between two samples of the records.
+fn sample_every(world: &World) -> u64 {
+    world.get_resource::<Sampling>().map_or(1, |s| s.every)
+}
+
 /// A run samples its last step even off its sampling interval (`stored`
 /// steps). If the resumed run goes on past that step and its own interval
 /// does not sample it either, a run of the resumed scene that never stopped
 /// has no sample there: it is taken back from every record.
 fn drop_the_end_sample(world: &mut World, kept: &KeptState, stored: u64) {
     let clock = *world.resource::<Clock>();
-    let every = world.resource::<Probes>().every.max(1);
+    let every = sample_every(world).max(1);
     let sampled_as_the_end = !clock.step.is_multiple_of(stored.max(1));
     if clock.finished() || !sampled_as_the_end || clock.step.is_multiple_of(every) {
         return;

@@ -19,9 +19,9 @@ pub(crate) use grid_layer::{Fix, NodeConstraint};
 pub use grid_layer::{GridLayer, GridNode};
 pub use material_points::{DampedEnergy, MaterialPoints, PointEnergies};
 pub(crate) use material_points::{NewPoint, StepTravel, hoop_radius};
-pub(crate) use rigid::{BlockContactLaw, RigidShape};
+pub(crate) use rigid::BlockContactLaw;
 pub use rigid::{
     BlockContacts, BlockId, BlockOutline, NeighbourList, PartReactions, PointContact, Pose,
-    Reaction, RigidMass, RigidMotion, RigidVelocity,
+    Reaction, RigidMass, RigidMotion, RigidShape, RigidVelocity,
 };
 pub(crate) use transfer_scratch::{MassMomentumForce, RemapScratch, TransferScratch};

@@ -10,9 +10,10 @@ mod linear_spring;
 mod shape_shape;
 
 pub(crate) use disk_disk::{DiskOverlap, disk_overlap};
-pub(crate) use disk_shape::{disk_shape_contact, overlap_area, overlap_area_integral};
+pub use disk_shape::{DiskContact, disk_shape_contact};
+pub(crate) use disk_shape::{overlap_area, overlap_area_integral};
 pub use force_application::ForceApplication;
 pub(crate) use force_application::traction_points;
 pub use linear_spring::ContactLaw;
-pub(crate) use linear_spring::pair_force;
+pub use linear_spring::{PairForce, pair_force};
 pub(crate) use shape_shape::{ShapeContact, shape_shape_contacts};

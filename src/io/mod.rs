@@ -3,9 +3,10 @@
 
 pub(crate) mod animation;
 pub mod csv;
+pub mod figure;
 pub(crate) mod manifest;
 pub(crate) mod output;
-pub(crate) mod plot;
+pub mod plot;
 pub(crate) mod vtk;
 
 pub(crate) use output::RunOutput;

@@ -3,6 +3,7 @@
 
 use super::animation::{Animation, FrameColumns};
 use super::csv::{self, CsvRecord};
+use super::figure::{Figure, FigureContext};
 use super::manifest::OutputManifest;
 use super::plot::{Series, plot_points, plot_series};
 use super::vtk::{
@@ -11,11 +12,10 @@ use super::vtk::{
 use crate::components::{BlockId, BlockOutline, BodyIndex, MaterialPoints, Pose};
 use crate::files::{located, partial_path};
 use crate::math::{DVec2, Real};
-use crate::plugins::{DepositLog, FrontLog};
-use crate::resources::{BlockLog, EnergyLog, Grid, Probes};
-use crate::rules::file_safe;
-use crate::scene::{CurveSpec, MotionSpec, PROBE_PLOT_LONGEST_SUFFIX, PROBE_PLOT_PREFIX, Scene};
+use crate::resources::{BlockLog, Grid};
+use crate::scene::{CurveSpec, Scene};
 use crate::simulation::Simulation;
+use bevy_ecs::entity::Entity;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -54,9 +54,6 @@ pub struct RunOutput {
     animation: Option<Animation>,
     /// The run's name, for the animation's titles.
     name: String,
-    /// Names of the blocks that may turn (all but the fixed ones), for
-    /// `block_rotation.png`.
-    moving_blocks: Vec<String>,
 }
 
 /// One CSV series open for appending.
@@ -149,6 +146,8 @@ struct FrameBuffers {
     outlines: Vec<Vec<DVec2>>,
     /// The scene index of each outline's block.
     outline_block: Vec<u32>,
+    /// The plugins' scalar fields: name and one value per point.
+    fields: Vec<(&'static str, Vec<Real>)>,
 }
 
 /// One sample of a reaction–displacement curve: time, scaled displacement,
@@ -188,7 +187,6 @@ impl RunOutput {
             bodies,
             animation,
             name: sim.name().to_owned(),
-            moving_blocks: moving_blocks(scene),
         };
         for &record in sim.csv_records() {
             let file = output.open_series(record, sim.world(), false)?;
@@ -262,7 +260,6 @@ impl RunOutput {
             bodies: scene.bodies.iter().map(|b| b.name.clone()).collect(),
             animation: animation(scene, sim, frame_every),
             name: sim.name().to_owned(),
-            moving_blocks: moving_blocks(scene),
         };
         // The series as the checkpoint holds them, then appended to.
         for &record in sim.csv_records() {
@@ -354,26 +351,28 @@ impl RunOutput {
         }
         self.write_collections()?;
         self.append_series(sim)?;
+        // The records' figures, of the plugins that were built.
         let world = sim.world();
-        let probes = world.resource::<Probes>();
-        let energy = world.resource::<EnergyLog>();
-        let blocks = world.resource::<BlockLog>();
         let per = world
             .resource::<crate::resources::Settings>()
             .geometry
             .per();
-        for (curve, start) in &self.curves {
-            write_curve(&mut self.folder, curve, *start, blocks, per)?;
+        if let Some(blocks) = world.get_resource::<BlockLog>() {
+            for (curve, start) in &self.curves {
+                write_curve(&mut self.folder, curve, *start, blocks, per)?;
+            }
         }
-        self.plot_energy(energy, per)?;
-        self.plot_block_rotations(blocks)?;
-        if let Some(fronts) = world.get_resource::<FrontLog>() {
-            self.plot_fronts(fronts)?;
+        let context = FigureContext {
+            scene: sim.scene(),
+            bodies: &self.bodies,
+            per,
+        };
+        for record in sim.figure_records() {
+            for figure in record.figures(world, &context) {
+                self.folder
+                    .write_file(&figure.file, |path| draw_figure(path, &figure))?;
+            }
         }
-        if let Some(deposits) = world.get_resource::<DepositLog>() {
-            self.plot_deposits(deposits)?;
-        }
-        self.plot_probes(probes)?;
         let grid = world.resource::<Grid>();
         self.plot_snapshot(sim.name(), grid)?;
         self.write_animation(grid)
@@ -403,6 +402,7 @@ impl RunOutput {
             displacements: &b.displacements,
             stresses: &b.stresses,
             body: &b.body,
+            fields: &b.fields,
         };
         let name = format!("vtk/points_{:05}.vtu", self.frames.len());
         self.folder
@@ -432,182 +432,6 @@ impl RunOutput {
             let frames = &self.block_frames;
             self.folder
                 .write_file("blocks.pvd", |path| write_collection(path, frames))?;
-        }
-        Ok(())
-    }
-
-    fn plot_energy(&mut self, energy: &EnergyLog, per: &str) -> std::io::Result<()> {
-        // Every column of energy.csv, so the balance can be checked from
-        // the plot.
-        type Term = (&'static str, fn(&crate::resources::EnergySample) -> Real);
-        const TERMS: [Term; 11] = [
-            ("kinetic", |s| s.kinetic),
-            ("strain", |s| s.strain),
-            ("contact", |s| s.contact),
-            ("total", |s| s.total()),
-            ("gravity", |s| s.gravity),
-            ("inelastic", |s| s.inelastic),
-            ("loads", |s| s.loads),
-            ("blocks", |s| s.blocks),
-            ("dissipated", |s| s.dissipated),
-            ("damped", |s| s.damped),
-            ("balance", |s| s.balance()),
-        ];
-        let curves: Vec<Vec<(Real, Real)>> = TERMS
-            .iter()
-            .map(|(_, f)| energy.samples.iter().map(|s| (s.time, f(s))).collect())
-            .collect();
-        let series = lines(TERMS.iter().map(|(name, _)| *name), &curves);
-        self.folder.write_file("energy.png", |path| {
-            plot_series(
-                path,
-                "Energy",
-                "time (s)",
-                &format!("energy (J/{per})"),
-                &series,
-            )
-        })
-    }
-
-    /// `block_rotation.png`: the rotation of every block that is not fixed,
-    /// in degrees against time (`blocks.csv` has it in radians).
-    fn plot_block_rotations(&mut self, blocks: &BlockLog) -> std::io::Result<()> {
-        if self.moving_blocks.is_empty() {
-            return Ok(());
-        }
-        let curves: Vec<Vec<(Real, Real)>> = self
-            .moving_blocks
-            .iter()
-            .map(|name| {
-                let index = blocks.names.iter().position(|n| n == name);
-                blocks
-                    .samples
-                    .iter()
-                    .filter(|s| Some(s.block as usize) == index)
-                    .map(|s| (s.time, s.angle.to_degrees()))
-                    .collect()
-            })
-            .collect();
-        let series = lines(self.moving_blocks.iter().map(String::as_str), &curves);
-        self.folder.write_file("block_rotation.png", |path| {
-            plot_series(
-                path,
-                "Rotation of the blocks",
-                "time (s)",
-                "rotation (degrees, counter-clockwise)",
-                &series,
-            )
-        })
-    }
-
-    /// `fronts.png`: each body's farthest point and bulk front against
-    /// time (`output.fronts`).
-    fn plot_fronts(&mut self, fronts: &FrontLog) -> std::io::Result<()> {
-        let mut names = Vec::new();
-        let mut curves: Vec<Vec<(Real, Real)>> = Vec::new();
-        for (k, body) in self.bodies.iter().enumerate() {
-            let of_body = || fronts.samples.iter().filter(|s| s.body as usize == k);
-            names.push(format!("{body}, farthest"));
-            curves.push(of_body().map(|s| (s.time, s.farthest)).collect());
-            names.push(format!("{body}, 99.9%"));
-            curves.push(of_body().map(|s| (s.time, s.bulk)).collect());
-            names.push(format!("{body}, toe at 2% of H0"));
-            curves.push(of_body().map(|s| (s.time, s.toe_2)).collect());
-        }
-        let series = lines(names.iter().map(String::as_str), &curves);
-        self.folder.write_file("fronts.png", |path| {
-            plot_series(path, "Fronts along +x", "time (s)", "front x (m)", &series)
-        })
-    }
-
-    /// `deposit.png`: each body's surface at the start and at the last
-    /// profile (`output.fronts`).
-    fn plot_deposits(&mut self, deposits: &DepositLog) -> std::io::Result<()> {
-        let last = deposits.columns.last().map_or(0.0, |c| c.time);
-        let mut names = Vec::new();
-        let mut curves: Vec<Vec<(Real, Real)>> = Vec::new();
-        for (k, body) in self.bodies.iter().enumerate() {
-            for (time, when) in [(0.0, "start"), (last, "last")] {
-                names.push(format!("{body}, {when} (t = {time:.3} s)"));
-                curves.push(
-                    deposits
-                        .columns
-                        .iter()
-                        .filter(|c| c.body as usize == k && c.time == time)
-                        .map(|c| (c.x, c.height))
-                        .collect(),
-                );
-            }
-        }
-        let series = lines(names.iter().map(String::as_str), &curves);
-        self.folder.write_file("deposit.png", |path| {
-            plot_series(
-                path,
-                "Surface of each body",
-                "x (m)",
-                "height above the initial base (m)",
-                &series,
-            )
-        })
-    }
-
-    fn plot_probes(&mut self, probes: &Probes) -> std::io::Result<()> {
-        let groups: [ProbePlot; 3] = [
-            (
-                "velocity",
-                "velocity (m/s)",
-                &[
-                    ("vx", |s| s.velocity.x),
-                    ("vy", |s| s.velocity.y),
-                    ("|v|", |s| s.velocity.length()),
-                ],
-            ),
-            (
-                "displacement",
-                "displacement (m)",
-                &[
-                    ("ux", |s| s.displacement.x),
-                    ("uy", |s| s.displacement.y),
-                    ("|u|", |s| s.displacement.length()),
-                ],
-            ),
-            (
-                "stress",
-                "stress (Pa)",
-                // szz: out of the plane, or the hoop stress in axisymmetry.
-                &[
-                    ("sxx", |s| s.stress.xx),
-                    ("syy", |s| s.stress.yy),
-                    ("sxy", |s| s.stress.xy),
-                    ("szz", |s| s.stress.zz),
-                ],
-            ),
-        ];
-        // The scene's check measures names against the longest of these.
-        assert!(
-            groups
-                .iter()
-                .all(|(group, ..)| group.len() + "_.png".len() <= PROBE_PLOT_LONGEST_SUFFIX.len()),
-            "a probe plot's name is longer than PROBE_PLOT_LONGEST_SUFFIX allows for"
-        );
-        for (k, probe) in probes.probes.iter().enumerate() {
-            for &(group, unit, picks) in &groups {
-                let curves: Vec<Vec<(Real, Real)>> = picks
-                    .iter()
-                    .map(|(_, f)| probes.series(k).map(|s| (s.time, f(s))).collect())
-                    .collect();
-                let series = lines(picks.iter().map(|(name, _)| *name), &curves);
-                let name = format!("{PROBE_PLOT_PREFIX}{}_{group}.png", file_safe(&probe.name));
-                self.folder.write_file(&name, |path| {
-                    plot_series(
-                        path,
-                        &format!("Probe '{}': {group}", probe.name),
-                        "time (s)",
-                        unit,
-                        &series,
-                    )
-                })?;
-            }
         }
         Ok(())
     }
@@ -642,25 +466,23 @@ fn animation(scene: &Scene, sim: &Simulation, frame_every: u64) -> Option<Animat
     ))
 }
 
-/// The names of the scene's blocks that are not fixed.
-fn moving_blocks(scene: &Scene) -> Vec<String> {
-    scene
-        .blocks
+/// Draws `figure` as the PNG `path`.
+fn draw_figure(path: &Path, figure: &Figure) -> std::io::Result<()> {
+    let series: Vec<Series> = figure
+        .curves
         .iter()
-        .filter(|b| b.motion != MotionSpec::Fixed)
-        .map(|b| b.name.clone())
-        .collect()
-}
-
-/// A line series for each of `names` over the curve of the same rank.
-fn lines<'a>(
-    names: impl Iterator<Item = &'a str>,
-    curves: &'a [Vec<(Real, Real)>],
-) -> Vec<Series<'a>> {
-    names
-        .zip(curves)
-        .map(|(name, points)| Series { name, points })
-        .collect()
+        .map(|c| Series {
+            name: &c.name,
+            points: &c.points,
+        })
+        .collect();
+    plot_series(
+        path,
+        &figure.title,
+        &figure.x_label,
+        &figure.y_label,
+        &series,
+    )
 }
 
 /// Steps between frames: the scene's frame interval (its default follows
@@ -803,14 +625,25 @@ impl FrameBuffers {
                 .iter()
                 .fold(self.marker, |m, h| m.min(2.0 * h.x));
         }
+        self.fill_point_fields(sim);
+    }
+
+    /// The plugins' point fields, bodies in scene order. A field that
+    /// gives a body another count of values than its points is written
+    /// as it is, and the frame's check of its columns refuses it.
+    fn fill_point_fields(&mut self, sim: &mut Simulation) {
+        let bodies: Vec<Entity> = sim.bodies().into_iter().map(|(e, _)| e).collect();
+        let records = sim.point_fields();
+        self.fields.resize_with(records.len(), || ("", Vec::new()));
+        for (record, (name, values)) in records.iter().zip(&mut self.fields) {
+            *name = record.name;
+            values.clear();
+            for &entity in &bodies {
+                (record.fill)(sim.world(), entity, values);
+            }
+        }
     }
 }
-
-/// A probe quantity: its name in the legend and how to read it from a sample.
-type ProbeCurve = (&'static str, fn(&crate::resources::ProbeSample) -> Real);
-
-/// One PNG per probe: file suffix, axis label and its curves.
-type ProbePlot = (&'static str, &'static str, &'static [ProbeCurve]);
 
 #[cfg(test)]
 mod tests {

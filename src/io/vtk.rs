@@ -31,25 +31,41 @@ pub struct PointFrame<'a> {
     pub stresses: &'a [[Real; 4]],
     /// Index of the body each point belongs to (scene order).
     pub body: &'a [u32],
+    /// The plugins' scalar fields: name and one value per point.
+    pub fields: &'a [(&'static str, Vec<Real>)],
+}
+
+/// The names of the point data arrays every frame has.
+pub(crate) const FRAME_FIELDS: [&str; 4] = ["velocity", "displacement", "stress", "body"];
+
+/// A scalar field a plugin adds to the points of the VTK frames: its name,
+/// and what appends one value per point of a body (its entity) to a column.
+#[derive(Clone, Copy)]
+pub(crate) struct PointFieldRecord {
+    pub name: &'static str,
+    pub fill: fn(&bevy_ecs::world::World, bevy_ecs::entity::Entity, &mut Vec<Real>),
 }
 
 /// Writes the frame as a VTK XML UnstructuredGrid (`.vtu`) of `VTK_VERTEX` cells, one per point.
 ///
 /// Point data arrays: `"velocity"` and `"displacement"` (3 components, z = 0), `"stress"` (the
 /// full symmetric 3x3 tensor as 9 components `[xx, xy, 0, xy, yy, 0, 0, 0, zz]`, so ParaView treats
-/// it as a tensor) and `"body"` (UInt32 scalar). Points are 3D with z = 0. Arrays are inline base64
+/// it as a tensor), `"body"` (UInt32 scalar) and the plugins' scalar fields. Points are 3D with z = 0. Arrays are inline base64
 /// binary (see the module docs).
 ///
 /// Fails with `InvalidInput` if the columns of `frame` differ in length, or with the I/O error of
 /// creating or writing the file.
 pub fn write_point_frame(path: &Path, frame: &PointFrame) -> std::io::Result<()> {
     let n = frame.positions.len();
-    let lengths = [
+    let lengths: Vec<usize> = [
         frame.velocities.len(),
         frame.displacements.len(),
         frame.stresses.len(),
         frame.body.len(),
-    ];
+    ]
+    .into_iter()
+    .chain(frame.fields.iter().map(|(_, values)| values.len()))
+    .collect();
     if lengths.iter().any(|&len| len != n) {
         return Err(std::io::Error::new(
             std::io::ErrorKind::InvalidInput,
@@ -61,7 +77,7 @@ pub fn write_point_frame(path: &Path, frame: &PointFrame) -> std::io::Result<()>
         .iter()
         .flat_map(|&[xx, yy, xy, zz]| [xx, xy, 0.0, xy, yy, 0.0, 0.0, 0.0, zz])
         .collect();
-    let point_data = vec![
+    let mut point_data = vec![
         Attribute::DataArray(DataArray::vectors("velocity").with_data(xyz(frame.velocities))),
         Attribute::DataArray(
             DataArray::vectors("displacement").with_data(xyz(frame.displacements)),
@@ -69,6 +85,9 @@ pub fn write_point_frame(path: &Path, frame: &PointFrame) -> std::io::Result<()>
         Attribute::DataArray(DataArray::tensors("stress").with_data(stress)),
         Attribute::DataArray(DataArray::scalars("body", 1).with_data(frame.body.to_vec())),
     ];
+    point_data.extend(frame.fields.iter().map(|(name, values)| {
+        Attribute::DataArray(DataArray::scalars(*name, 1).with_data(values.clone()))
+    }));
     let cells = Cells {
         cell_verts: VertexNumbers::XML {
             connectivity: (0..n as u64).collect(),
@@ -307,6 +326,7 @@ mod tests {
             displacements: &displacements,
             stresses: &stresses,
             body: &body,
+            fields: &[("porosity", vec![0.3, 0.35, 0.4])],
         };
         let dir = test_dir("frame");
         let path = dir.path().join("points_0000.vtu");
@@ -335,6 +355,12 @@ mod tests {
             .cast_into::<f64>()
             .unwrap();
         assert_eq!(&velocity[6..9], &[-1.0, 1e-12, 0.0]);
+        let porosity = point_array(&piece, "porosity");
+        assert_eq!(porosity.num_comp(), 1);
+        assert_eq!(
+            porosity.data.cast_into::<f64>().unwrap(),
+            vec![0.3, 0.35, 0.4]
+        );
         let body_read = point_array(&piece, "body");
         assert_eq!(body_read.data, IOBuffer::U32(vec![0, 0, 1]));
     }
@@ -348,6 +374,7 @@ mod tests {
             displacements: &positions,
             stresses: &[[0.0; 4]],
             body: &[0, 0],
+            fields: &[],
         };
         let dir = test_dir("mismatch");
         let path = dir.path().join("bad.vtu");
@@ -364,6 +391,7 @@ mod tests {
             displacements: &[],
             stresses: &[],
             body: &[],
+            fields: &[],
         };
         write_point_frame(&dir.path().join("points.vtu"), &frame).unwrap();
         write_outlines(&dir.path().join("outlines.vtu"), &[], &[]).unwrap();

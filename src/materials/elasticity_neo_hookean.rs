@@ -71,6 +71,11 @@ impl NeoHookean {
 }
 
 impl ConstitutiveModel for NeoHookean {
+    /// σ from F.
+    fn stress_from_deformation(&self) -> bool {
+        true
+    }
+
     /// Sets σ from F^{n+1}; the incoming stress is not read, so an initial
     /// stress given in a scene is replaced at the first step. Dissipates
     /// nothing.

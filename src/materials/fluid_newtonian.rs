@@ -61,6 +61,11 @@ impl NewtonianFluid {
 }
 
 impl ConstitutiveModel for NewtonianFluid {
+    /// The pressure from the density.
+    fn stress_from_deformation(&self) -> bool {
+        true
+    }
+
     /// σ = 2 μ_w D′ − p I from the step's D and J = det F^{n+1} F_zz (eq. 22);
     /// the incoming stress is not read. The viscous stress dissipates
     /// 2 μ_w D′ : D′ Δt per unit volume.

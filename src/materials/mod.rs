@@ -90,6 +90,27 @@ pub trait ConstitutiveModel: Send + Sync {
     fn granular(&self) -> bool {
         false
     }
+
+    /// Whether the model can leave points that have grown loose carrying
+    /// no stress (Drucker–Prager and Mohr–Coulomb with
+    /// `disconnected_above`). False by default.
+    fn disconnects_loose_points(&self) -> bool {
+        false
+    }
+
+    /// Whether the model computes the stress from the deformation (the
+    /// deformation gradient, or the density) rather than advancing it by
+    /// a rate, so that a stress set before the first step is lost at it.
+    /// False by default.
+    fn stress_from_deformation(&self) -> bool {
+        false
+    }
+
+    /// Whether `stress` is admissible: on or inside the model's yield
+    /// surface. True by default (a model without one).
+    fn admits(&self, _stress: &SymTensor) -> bool {
+        true
+    }
 }
 
 /// A plasticity model on a linear elastic predictor: the elastic trial
@@ -121,6 +142,11 @@ pub trait ElasticPlastic: Send + Sync {
     /// no stress (a granular material looser than its critical density);
     /// never by default.
     fn disconnected(&self, _step: &PointStep) -> bool {
+        false
+    }
+
+    /// Whether [`Self::disconnected`] can ever hold. False by default.
+    fn disconnects(&self) -> bool {
         false
     }
 }
@@ -156,6 +182,15 @@ impl<T: ElasticPlastic> ConstitutiveModel for T {
 
     fn granular(&self) -> bool {
         self.frictional()
+    }
+
+    fn disconnects_loose_points(&self) -> bool {
+        self.disconnects()
+    }
+
+    /// Admissible if the return leaves it unchanged.
+    fn admits(&self, stress: &SymTensor) -> bool {
+        self.return_map(*stress) == *stress
     }
 }
 
@@ -242,6 +277,18 @@ impl ConstitutiveModel for UserModel {
     fn granular(&self) -> bool {
         self.model.granular()
     }
+
+    fn disconnects_loose_points(&self) -> bool {
+        self.model.disconnects_loose_points()
+    }
+
+    fn stress_from_deformation(&self) -> bool {
+        self.model.stress_from_deformation()
+    }
+
+    fn admits(&self, stress: &SymTensor) -> bool {
+        self.model.admits(stress)
+    }
 }
 
 impl MaterialModel {
@@ -257,15 +304,10 @@ impl MaterialModel {
         }
     }
 
-    /// Whether `stress` is admissible for the model: inside (or on) the
-    /// yield surface of the plastic models, which return it unchanged;
-    /// always for the others (a user model's surface is not known).
+    /// Whether `stress` is admissible for the model: on or inside its
+    /// yield surface ([`ConstitutiveModel::admits`]).
     pub fn admits(&self, stress: &SymTensor) -> bool {
-        match self {
-            Self::MohrCoulomb(m) => m.return_map(*stress) == *stress,
-            Self::DruckerPrager(m) => m.return_map(*stress) == *stress,
-            _ => true,
-        }
+        self.as_model().admits(stress)
     }
 
     /// The model as a trait object, for code outside the hot loops.

@@ -135,6 +135,10 @@ impl ElasticPlastic for DruckerPrager {
     fn disconnected(&self, step: &PointStep) -> bool {
         looser_than(self.disconnected_above, step)
     }
+
+    fn disconnects(&self) -> bool {
+        self.disconnected_above.is_some()
+    }
 }
 
 impl DruckerPrager {
@@ -187,6 +191,10 @@ impl ElasticPlastic for PreparedDruckerPrager {
 
     fn disconnected(&self, step: &PointStep) -> bool {
         looser_than(self.disconnected_above, step)
+    }
+
+    fn disconnects(&self) -> bool {
+        self.disconnected_above.is_some()
     }
 
     /// Returns a trial stress to the admissible region (Huang et al. 2015

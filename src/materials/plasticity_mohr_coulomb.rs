@@ -552,6 +552,10 @@ impl ElasticPlastic for MohrCoulomb {
     fn disconnected(&self, step: &PointStep) -> bool {
         looser_than(self.disconnected_above, step)
     }
+
+    fn disconnects(&self) -> bool {
+        self.disconnected_above.is_some()
+    }
 }
 
 impl MohrCoulomb {
@@ -591,6 +595,10 @@ impl ElasticPlastic for PreparedMohrCoulomb {
 
     fn disconnected(&self, step: &PointStep) -> bool {
         looser_than(self.disconnected_above, step)
+    }
+
+    fn disconnects(&self) -> bool {
+        self.disconnected_above.is_some()
     }
 
     /// Returns a trial stress to the admissible set (see the module docs).

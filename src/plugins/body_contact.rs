@@ -1,14 +1,14 @@
 //! Contacts between bodies (section 3.3) and the body pairs' record,
 //! `body_contacts.csv`.
 
-use super::records::{refill, samples_in_run};
+use super::records::refill;
 use super::{MpmPlugin, PluginSetup, placed_bodies};
 use crate::checkpoint::{Checkpointed, TimeRecord};
 use crate::components::bodies_in_scene_order;
 use crate::math::Real;
 use crate::resources::{
-    BodyContacts, BodyPairContact, BodyPairLaw, BodyPairLog, BodyPairSample, Clock, PairSummary,
-    Probes, UpdateScheme,
+    BodyContacts, BodyPairContact, BodyPairLaw, BodyPairLog, BodyPairSample, PairSummary,
+    UpdateScheme,
 };
 use crate::scene::{Scene, SceneError, body_contact_stability_warnings, body_overlap_warnings};
 use crate::systems::{ContactStep, DiagnosticsStep, compute_body_contacts, record_body_pairs};
@@ -24,8 +24,8 @@ impl MpmPlugin for BodyContactPlugin {
         let bodies = bodies_in_scene_order(setup.world);
         let warnings = layout_warnings(scene, setup.world, &bodies, &laws);
         setup.warn_all(warnings);
+        let samples = setup.samples_in_run();
         let world = &mut *setup.world;
-        let samples = samples_in_run(world.resource::<Clock>(), world.resource::<Probes>().every);
         // The first sample, at the start, has no contacts yet.
         let mut log = BodyPairLog {
             samples: Vec::with_capacity(samples * laws.len()),
@@ -118,7 +118,7 @@ fn layout_warnings(
     world: &World,
     bodies: &[Entity],
     laws: &[BodyPairLaw],
-) -> Vec<String> {
+) -> Vec<crate::warning::Warning> {
     let placed = placed_bodies(scene, world, bodies);
     let mut warnings = body_overlap_warnings(&placed, laws);
     warnings.extend(body_contact_stability_warnings(

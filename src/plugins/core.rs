@@ -10,17 +10,19 @@ use crate::components::{
 };
 use crate::math::Real;
 use crate::resources::{
-    Clock, Diagnostics, EdgeConditions, Gravity, Grid, Settings, SharedLayers, UpdateScheme,
+    Clock, ContactWork, Diagnostics, EdgeConditions, Gravity, Grid, Sampling, Settings,
+    SharedLayers, UpdateScheme,
 };
 use crate::scene::{
     Scene, SceneError, free_edge_warnings, granular_transfer_warning, off_step_warnings,
     undamped_contact_warning,
 };
 use crate::systems::{
-    DiagnosticsStep, MpmSystems, advance_clock, check_finite, check_loose_points, grid_to_particle,
-    particle_to_grid, rebuild_node_constraints, reset_grid_layers, solve_nodal_momentum,
-    update_stress,
+    ContactTransferStep, DiagnosticsStep, MpmSystems, account_contact_work, advance_clock,
+    check_finite, check_loose_points, grid_to_particle, particle_to_grid, rebuild_node_constraints,
+    reset_grid_layers, solve_nodal_momentum, transfer_contact_forces, update_stress,
 };
+use crate::warning::{Warning, WarningKind};
 use bevy_ecs::prelude::*;
 
 /// The core of the step (Algorithm 1 without its contacts).
@@ -58,11 +60,20 @@ impl MpmPlugin for CorePlugin {
         world.insert_resource(clock);
         world.insert_resource(scene.settings);
         world.insert_resource(Gravity(scene.gravity));
+        // How contact forces reach the points, which the transfer reads,
+        // and the work they do, for the energy balance: of the blocks' and
+        // the bodies' contacts alike.
+        world.insert_resource(scene.contact);
+        world.insert_resource(ContactWork::default());
         world.insert_resource(Diagnostics::default());
+        world.insert_resource(Sampling {
+            every: scene.output.probe_every(scene.time.end, scene.time.dt),
+        });
         world.insert_resource(shared);
         // Stages change the settings, gravity and the grid's edges.
         setup.keep_resource::<Settings>("settings");
         setup.keep_resource::<Gravity>("gravity");
+        setup.keep_resource::<ContactWork>("contact work");
         setup.keep_checkpointed::<Grid>("grid edges");
         Ok(())
     }
@@ -75,6 +86,10 @@ impl MpmPlugin for CorePlugin {
             update_stress(scheme).in_set(MpmSystems::StressUpdate),
             solve_nodal_momentum.in_set(MpmSystems::NodalSolve),
             grid_to_particle.in_set(MpmSystems::GridToParticle),
+            // The contacts' forces reach the nodes, and their work is
+            // counted, whichever plugins found them (blocks, bodies).
+            transfer_contact_forces.in_set(ContactTransferStep::Forces),
+            account_contact_work.in_set(DiagnosticsStep::ContactWork),
             check_finite.in_set(DiagnosticsStep::CheckFinite),
             check_loose_points
                 .in_set(DiagnosticsStep::CheckFinite)
@@ -98,16 +113,16 @@ impl Checkpointed for Grid {
 
 /// Warnings about the time step: off the end or an interval, and above a
 /// material's CFL limit on this grid.
-fn time_step_warnings(scene: &Scene, clock: &Clock, grid: &Grid) -> Vec<String> {
+fn time_step_warnings(scene: &Scene, clock: &Clock, grid: &Grid) -> Vec<Warning> {
     let mut warnings = off_step_warnings(scene, clock);
     for material in &scene.materials {
         let wave_speed = (material.model.as_model().p_wave_modulus() / material.density).sqrt();
         let limit = grid.cell_size / wave_speed;
         if clock.dt > limit {
-            warnings.push(format!(
+            warnings.push(Warning::new(WarningKind::TimeStep, "time.dt", format!(
                 "time.dt = {:e} s exceeds the CFL limit h / c = {limit:.4e} s of material '{}' (c = {wave_speed:.4e} m/s): the run will likely blow up",
                 clock.dt, material.name
-            ));
+            )));
         }
     }
     warnings
@@ -123,14 +138,14 @@ const FRAME_BYTES_PER_POINT: Real = 220.0;
 
 /// A warning when the run would write more than [`MANY_FRAMES`] frames of
 /// its `points`, with the room they would take.
-fn frame_count_warning(scene: &Scene, clock: &Clock, points: usize) -> Option<String> {
+fn frame_count_warning(scene: &Scene, clock: &Clock, points: usize) -> Option<Warning> {
     let every = scene.output.frame_every(clock.end, clock.dt);
     let frames = clock.total_steps() / every + 1;
     let gigabytes = frames as Real * points as Real * FRAME_BYTES_PER_POINT / 1e9;
     (frames > MANY_FRAMES).then(|| {
-        format!(
+        Warning::new(WarningKind::Output, "output.frame_interval", format!(
             "output: the run writes up to {frames} VTK frames (one every {every} steps), about {gigabytes:.1} GB for its {points} points; a longer output.frame_interval writes fewer"
-        )
+        ))
     })
 }
 
@@ -142,7 +157,7 @@ fn free_edge_warnings_at_the_start(
     world: &World,
     bodies: &[Entity],
     grid: &Grid,
-) -> Vec<String> {
+) -> Vec<Warning> {
     let placed = placed_bodies(scene, world, bodies);
     let first = scene.stages.first();
     let mut start = grid.clone();

@@ -9,8 +9,9 @@ use crate::checkpoint::{Checkpointed, TimeRecord};
 use crate::components::{BodyIndex, MaterialPoints};
 use crate::deposit::{DepositDatum, SurfaceProfile, TOE_LEVELS, share_beyond};
 use crate::io::csv::CsvSeries;
+use crate::io::figure::{Curve, Figure, FigureContext};
 use crate::math::Real;
-use crate::resources::{Clock, Diagnostics, Grid, Probes, UpdateScheme};
+use crate::resources::{Clock, Diagnostics, Grid, Sampling, UpdateScheme};
 use crate::scene::SceneError;
 use crate::systems::{DiagnosticsStep, record_probes_and_energy};
 use bevy_ecs::prelude::*;
@@ -189,7 +190,7 @@ fn fronts(xs: &mut [Real]) -> (Real, Real) {
 fn record_fronts(
     clock: Res<Clock>,
     diagnostics: Res<Diagnostics>,
-    probes: Res<Probes>,
+    sampling: Res<Sampling>,
     mut fronts: ResMut<FrontLog>,
     mut deposits: ResMut<DepositLog>,
     bodies: Query<(&BodyIndex, &MaterialPoints)>,
@@ -197,7 +198,7 @@ fn record_fronts(
     if diagnostics.failure.is_some() {
         return;
     }
-    if probes.due(&clock) {
+    if sampling.due(&clock) {
         fronts.record(clock.time, bodies.iter());
     }
     if deposits.due(&clock) {
@@ -205,8 +206,9 @@ fn record_fronts(
     }
 }
 
-/// `fronts.csv`, when the scene's `output.fronts` asks for it.
-pub(crate) struct FrontsPlugin;
+/// Each body's front and deposit (`fronts.csv`, `deposit.csv`), when the
+/// scene's `output.fronts` asks for them.
+pub struct FrontsPlugin;
 
 impl MpmPlugin for FrontsPlugin {
     fn build(&self, setup: &mut PluginSetup) -> Result<(), SceneError> {
@@ -234,6 +236,8 @@ impl MpmPlugin for FrontsPlugin {
         setup.world.insert_resource(deposits);
         setup.record::<FrontLog>("fronts", "fronts.csv");
         setup.record::<DepositLog>("deposit", "deposit.csv");
+        setup.plot::<FrontLog>(fronts_figure);
+        setup.plot::<DepositLog>(deposit_figure);
         Ok(())
     }
 
@@ -334,6 +338,60 @@ impl CsvSeries for FrontLog {
             s.spray
         )
     }
+}
+
+/// `fronts.png`: each body's farthest point, bulk front and toe against
+/// time.
+fn fronts_figure(fronts: &FrontLog, context: &FigureContext) -> Vec<Figure> {
+    let mut curves = Vec::new();
+    for (k, body) in context.bodies.iter().enumerate() {
+        let of_body = || fronts.samples.iter().filter(move |s| s.body as usize == k);
+        curves.push(Curve::new(
+            format!("{body}, farthest"),
+            of_body().map(|s| (s.time, s.farthest)),
+        ));
+        curves.push(Curve::new(
+            format!("{body}, 99.9%"),
+            of_body().map(|s| (s.time, s.bulk)),
+        ));
+        curves.push(Curve::new(
+            format!("{body}, toe at 2% of H0"),
+            of_body().map(|s| (s.time, s.toe_2)),
+        ));
+    }
+    vec![Figure {
+        file: "fronts.png".into(),
+        title: "Fronts along +x".into(),
+        x_label: "time (s)".into(),
+        y_label: "front x (m)".into(),
+        curves,
+    }]
+}
+
+/// `deposit.png`: each body's surface at the start and at the last
+/// profile.
+fn deposit_figure(deposits: &DepositLog, context: &FigureContext) -> Vec<Figure> {
+    let last = deposits.columns.last().map_or(0.0, |c| c.time);
+    let mut curves = Vec::new();
+    for (k, body) in context.bodies.iter().enumerate() {
+        for (time, when) in [(0.0, "start"), (last, "last")] {
+            let columns = deposits
+                .columns
+                .iter()
+                .filter(|c| c.body as usize == k && c.time == time);
+            curves.push(Curve::new(
+                format!("{body}, {when} (t = {time:.3} s)"),
+                columns.map(|c| (c.x, c.height)),
+            ));
+        }
+    }
+    vec![Figure {
+        file: "deposit.png".into(),
+        title: "Surface of each body".into(),
+        x_label: "x (m)".into(),
+        y_label: "height above the initial base (m)".into(),
+        curves,
+    }]
 }
 
 #[cfg(test)]

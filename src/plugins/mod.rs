@@ -7,31 +7,43 @@
 mod body_contact;
 mod core;
 mod fronts;
+mod group;
 mod records;
 mod rigid_blocks;
 mod stages;
 
-use body_contact::BodyContactPlugin;
-use core::CorePlugin;
-use fronts::FrontsPlugin;
-pub use fronts::{DepositColumn, DepositLog, FrontLog, FrontSample};
-use records::RecordsPlugin;
-use rigid_blocks::RigidBlocksPlugin;
-use stages::StagesPlugin;
+pub use body_contact::BodyContactPlugin;
+pub use core::CorePlugin;
+pub use fronts::{DepositColumn, DepositLog, FrontLog, FrontSample, FrontsPlugin};
+pub use group::DefaultPlugins;
+pub use records::RecordsPlugin;
+pub use rigid_blocks::RigidBlocksPlugin;
+pub use stages::StagesPlugin;
 
 use crate::checkpoint::{Checkpointed, KeptState, TimeRecord};
 use crate::components::BlockTemplate;
 use crate::io::csv::{CsvRecord, CsvSeries};
+use crate::io::figure::{Figure, FigureContext, FigureRecord};
+use crate::io::vtk::{FRAME_FIELDS, PointFieldRecord};
+use crate::math::Real;
 use crate::resources::UpdateScheme;
 use crate::scene::{Scene, SceneError};
+use crate::warning::Warning;
 use bevy_ecs::prelude::*;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
+use std::any::Any;
 
 /// A feature of the engine: what it adds to the world of a scene and to
 /// the step. Modelled on bevy's `Plugin`, over a [`World`] and the
-/// [`crate::systems::MpmSchedule`].
-pub trait MpmPlugin: Sync {
+/// [`crate::systems::MpmSchedule`]. A simulation holds each plugin type
+/// once: adding one a second time is refused.
+pub trait MpmPlugin: Any + Send + Sync {
+    /// The plugin's name in messages: its type's, by default.
+    fn name(&self) -> &str {
+        std::any::type_name::<Self>()
+    }
+
     /// Sets the feature up in a world spawned from a scene (its bodies and
     /// blocks are there, and the resources of the plugins built before; a
     /// user's plugin comes after the engine's, so after the first stage
@@ -51,18 +63,6 @@ pub trait MpmPlugin: Sync {
     fn add_systems(&self, schedule: &mut Schedule, scheme: UpdateScheme);
 }
 
-/// The engine's features, in the order they are built (a plugin may use
-/// the resources of those before it; stages come last, as entering the
-/// first stage changes what the others set up).
-pub(crate) const DEFAULT_PLUGINS: [&dyn MpmPlugin; 6] = [
-    &CorePlugin,
-    &RecordsPlugin,
-    &FrontsPlugin,
-    &RigidBlocksPlugin,
-    &BodyContactPlugin,
-    &StagesPlugin,
-];
-
 /// What a plugin sets its feature up with: the scene, the world spawned
 /// from it, and the registries of checkpointed state and recorded series.
 pub struct PluginSetup<'a> {
@@ -73,7 +73,9 @@ pub struct PluginSetup<'a> {
     pub world: &'a mut World,
     kept: &'a mut KeptState,
     records: &'a mut Vec<CsvRecord>,
-    warnings: &'a mut Vec<String>,
+    figures: &'a mut Vec<FigureRecord>,
+    point_fields: &'a mut Vec<PointFieldRecord>,
+    warnings: &'a mut Vec<Warning>,
     absent_blocks: &'a mut Vec<BlockTemplate>,
 }
 
@@ -89,18 +91,20 @@ impl<'a> PluginSetup<'a> {
             world,
             kept: &mut registries.kept,
             records: &mut registries.records,
+            figures: &mut registries.figures,
+            point_fields: &mut registries.point_fields,
             warnings: &mut registries.warnings,
             absent_blocks,
         }
     }
 
     /// Adds a warning for the user (shown by `mpdem check` and `run`).
-    pub fn warn(&mut self, warning: impl Into<String>) {
-        self.warnings.push(warning.into());
+    pub fn warn(&mut self, warning: Warning) {
+        self.warnings.push(warning);
     }
 
     /// Adds warnings for the user.
-    pub fn warn_all(&mut self, warnings: impl IntoIterator<Item = String>) {
+    pub fn warn_all(&mut self, warnings: impl IntoIterator<Item = Warning>) {
         self.warnings.extend(warnings);
     }
 
@@ -144,14 +148,37 @@ impl<'a> PluginSetup<'a> {
         self.records.push(CsvRecord::of::<R>(file));
     }
 
+    /// Makes the outputs draw the resource `R` at the run's end: `draw`
+    /// gives its figures, line charts as data (see [`Figure`]), each
+    /// written as the PNG its `file` names. Nothing is drawn when `R` is
+    /// not in the world.
+    pub fn plot<R: Resource>(&mut self, draw: fn(&R, &FigureContext) -> Vec<Figure>) {
+        self.figures.push(FigureRecord::of::<R>(draw));
+    }
+
+    /// Adds the scalar field `name` to the points of the VTK frames:
+    /// `fill` appends one value per point of a body (given its entity), in
+    /// its points' order, to the column it is given.
+    ///
+    /// # Panics
+    /// If `name` is one of the frame's own fields (`velocity`,
+    /// `displacement`, `stress`, `body`) or was added before.
+    pub fn point_field(&mut self, name: &'static str, fill: fn(&World, Entity, &mut Vec<Real>)) {
+        assert!(
+            !FRAME_FIELDS.contains(&name) && self.point_fields.iter().all(|f| f.name != name),
+            "the point field '{name}' is in the frames already"
+        );
+        self.point_fields.push(PointFieldRecord { name, fill });
+    }
+
     /// How many samples a record may take in the run (the first, one per
     /// sampling interval, one at the end): reserve this room when building
     /// a record, so that recording never allocates inside the step.
     pub fn samples_in_run(&self) -> usize {
         let every = self
             .world
-            .get_resource::<crate::resources::Probes>()
-            .map_or(1, |p| p.every);
+            .get_resource::<crate::resources::Sampling>()
+            .map_or(1, |s| s.every);
         records::samples_in_run(self.world.resource::<crate::resources::Clock>(), every)
     }
 
@@ -183,10 +210,13 @@ fn placed_bodies<'w>(
 }
 
 /// What the plugins of a simulation registered: the state checkpoints
-/// carry, the CSV series the outputs write, and the warnings they raised.
+/// carry, the CSV series, figures and point fields the outputs write, and
+/// the warnings they raised.
 #[derive(Default)]
 pub(crate) struct Registries {
     pub kept: KeptState,
     pub records: Vec<CsvRecord>,
-    pub warnings: Vec<String>,
+    pub figures: Vec<FigureRecord>,
+    pub point_fields: Vec<PointFieldRecord>,
+    pub warnings: Vec<Warning>,
 }

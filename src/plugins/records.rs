@@ -3,10 +3,13 @@
 use super::{MpmPlugin, PluginSetup};
 use crate::checkpoint::{Checkpointed, TimeRecord};
 use crate::components::{Material, MaterialPoints, bodies_in_scene_order};
+use crate::io::figure::{Curve, Figure, FigureContext};
 use crate::math::Real;
 use crate::resources::{Clock, EnergyLog, EnergySample, Probe, ProbeSample, Probes, UpdateScheme};
-use crate::scene::{Scene, SceneError};
+use crate::rules::file_safe;
+use crate::scene::{PROBE_PLOT_PREFIX, Scene, SceneError};
 use crate::systems::{DiagnosticsStep, record_probes_and_energy};
+use crate::warning::{Warning, WarningKind};
 use bevy_ecs::prelude::*;
 
 /// Probes and energies, sampled every `output.probe_every` steps, at the
@@ -19,8 +22,8 @@ impl MpmPlugin for RecordsPlugin {
         let bodies = bodies_in_scene_order(setup.world);
         let (mut probes, warnings) = place_probes(scene, setup.world, &bodies);
         setup.warn_all(warnings);
+        let samples = setup.samples_in_run();
         let world = &mut *setup.world;
-        let samples = samples_in_run(world.resource::<Clock>(), probes.every);
         probes.samples.reserve_exact(samples * probes.probes.len());
         probes.record(0.0, |e| world.get::<MaterialPoints>(e));
         let mut energy = EnergyLog {
@@ -39,12 +42,100 @@ impl MpmPlugin for RecordsPlugin {
         world.insert_resource(energy);
         setup.record::<Probes>("probes", "probes.csv");
         setup.record::<EnergyLog>("energy", "energy.csv");
+        setup.plot::<EnergyLog>(energy_figure);
+        setup.plot::<Probes>(probe_figures);
         Ok(())
     }
 
     fn add_systems(&self, schedule: &mut Schedule, _: UpdateScheme) {
         schedule.add_systems(record_probes_and_energy.in_set(DiagnosticsStep::Energy));
     }
+}
+
+/// `energy.png`: every column of `energy.csv`, so the balance can be
+/// checked from the figure.
+fn energy_figure(energy: &EnergyLog, context: &FigureContext) -> Vec<Figure> {
+    type Term = (&'static str, fn(&EnergySample) -> Real);
+    const TERMS: [Term; 11] = [
+        ("kinetic", |s| s.kinetic),
+        ("strain", |s| s.strain),
+        ("contact", |s| s.contact),
+        ("total", |s| s.total()),
+        ("gravity", |s| s.gravity),
+        ("inelastic", |s| s.inelastic),
+        ("loads", |s| s.loads),
+        ("blocks", |s| s.blocks),
+        ("dissipated", |s| s.dissipated),
+        ("damped", |s| s.damped),
+        ("balance", |s| s.balance()),
+    ];
+    vec![Figure {
+        file: "energy.png".into(),
+        title: "Energy".into(),
+        x_label: "time (s)".into(),
+        y_label: format!("energy (J/{})", context.per),
+        curves: TERMS
+            .iter()
+            .map(|(name, f)| Curve::new(*name, energy.samples.iter().map(|s| (s.time, f(s)))))
+            .collect(),
+    }]
+}
+
+/// A probe quantity: its name in the legend and how to read it from a sample.
+type ProbeCurve = (&'static str, fn(&ProbeSample) -> Real);
+
+/// The figures of each probe: `probe_<name>_<group>.png`, with the group's
+/// axis label and curves.
+const PROBE_FIGURES: [(&str, &str, &[ProbeCurve]); 3] = [
+    (
+        "velocity",
+        "velocity (m/s)",
+        &[
+            ("vx", |s| s.velocity.x),
+            ("vy", |s| s.velocity.y),
+            ("|v|", |s| s.velocity.length()),
+        ],
+    ),
+    (
+        "displacement",
+        "displacement (m)",
+        &[
+            ("ux", |s| s.displacement.x),
+            ("uy", |s| s.displacement.y),
+            ("|u|", |s| s.displacement.length()),
+        ],
+    ),
+    (
+        "stress",
+        "stress (Pa)",
+        // szz: out of the plane, or the hoop stress in axisymmetry.
+        &[
+            ("sxx", |s| s.stress.xx),
+            ("syy", |s| s.stress.yy),
+            ("sxy", |s| s.stress.xy),
+            ("szz", |s| s.stress.zz),
+        ],
+    ),
+];
+
+/// Each probe's velocity, displacement and stress against time.
+fn probe_figures(probes: &Probes, _: &FigureContext) -> Vec<Figure> {
+    let mut figures = Vec::new();
+    for (k, probe) in probes.probes.iter().enumerate() {
+        for (group, unit, picks) in PROBE_FIGURES {
+            figures.push(Figure {
+                file: format!("{PROBE_PLOT_PREFIX}{}_{group}.png", file_safe(&probe.name)),
+                title: format!("Probe '{}': {group}", probe.name),
+                x_label: "time (s)".into(),
+                y_label: unit.into(),
+                curves: picks
+                    .iter()
+                    .map(|(name, f)| Curve::new(*name, probes.series(k).map(|s| (s.time, f(s)))))
+                    .collect(),
+            });
+        }
+    }
+    figures
 }
 
 /// How many samples a record may take in the run: the first, one per
@@ -99,11 +190,10 @@ pub(crate) fn refill<T>(record: &mut Vec<T>, stored: Vec<T>) {
 
 /// The probes, each on the point of its body nearest where it is placed,
 /// and warnings for those placed more than a cell from it.
-fn place_probes(scene: &Scene, world: &World, bodies: &[Entity]) -> (Probes, Vec<String>) {
+fn place_probes(scene: &Scene, world: &World, bodies: &[Entity]) -> (Probes, Vec<Warning>) {
     let mut warnings = Vec::new();
     let mut probes = Probes {
         probes: Vec::new(),
-        every: scene.output.probe_every(scene.time.end, scene.time.dt),
         samples: Vec::new(),
     };
     for spec in &scene.probes {
@@ -124,13 +214,13 @@ fn place_probes(scene: &Scene, world: &World, bodies: &[Entity]) -> (Probes, Vec
         if let Some(x) = points.get(nearest)
             && x.distance(spec.at) > scene.grid.cell_size
         {
-            warnings.push(format!(
+            warnings.push(Warning::new(WarningKind::Probe, format!("probes[\"{}\"].at", spec.name), format!(
                 "probe '{}' at {} records the nearest point of body '{}', at {x}, {:.3e} m away (more than a cell): is `at` where you meant?",
                 spec.name,
                 spec.at,
                 spec.body,
                 x.distance(spec.at)
-            ));
+            )));
         }
         probes.probes.push(Probe {
             name: spec.name.clone(),
@@ -139,4 +229,17 @@ fn place_probes(scene: &Scene, world: &World, bodies: &[Entity]) -> (Probes, Vec
         });
     }
     (probes, warnings)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::PROBE_PLOT_LONGEST_SUFFIX;
+
+    #[test]
+    fn the_scenes_check_allows_for_the_longest_probe_figure_name() {
+        for (group, ..) in PROBE_FIGURES {
+            assert!(group.len() + "_.png".len() <= PROBE_PLOT_LONGEST_SUFFIX.len());
+        }
+    }
 }

@@ -2,21 +2,19 @@
 //! neighbour lists, contact forces, their transfer, the blocks' motion,
 //! the contacts' work, and the blocks' record, `blocks.csv`.
 
-use super::records::{refill, samples_in_run};
+use super::records::refill;
 use super::{MpmPlugin, PluginSetup};
 use crate::checkpoint::{Checkpointed, TimeRecord};
 use crate::components::{BlockId, PartReactions, Pose, Reaction, RigidVelocity};
+use crate::io::figure::{Curve, Figure, FigureContext};
 use crate::math::Real;
-use crate::resources::{
-    BlockContactHistory, BlockLog, BlockPartSample, BlockSample, Clock, ContactWork, Probes,
-    UpdateScheme,
-};
+use crate::resources::{BlockContactHistory, BlockLog, BlockPartSample, BlockSample, UpdateScheme};
 use crate::rigid::BlockShape;
+use crate::scene::MotionSpec;
 use crate::scene::{SceneError, block_pair_laws};
 use crate::systems::{
-    ContactStep, ContactTransferStep, DiagnosticsStep, MpmSystems, account_contact_work,
-    compute_rigid_contacts, move_rigid_blocks, rebuild_neighbour_lists, record_blocks,
-    transfer_contact_forces,
+    ContactStep, DiagnosticsStep, MpmSystems, compute_rigid_contacts, move_rigid_blocks,
+    rebuild_neighbour_lists, record_blocks,
 };
 use bevy_ecs::prelude::*;
 
@@ -26,8 +24,8 @@ pub struct RigidBlocksPlugin;
 impl MpmPlugin for RigidBlocksPlugin {
     fn build(&self, setup: &mut PluginSetup) -> Result<(), SceneError> {
         let scene = setup.scene;
+        let samples = setup.samples_in_run();
         let world = &mut *setup.world;
-        let samples = samples_in_run(world.resource::<Clock>(), world.resource::<Probes>().every);
         let compound_parts: usize = scene
             .blocks
             .iter()
@@ -43,16 +41,14 @@ impl MpmPlugin for RigidBlocksPlugin {
         };
         record_blocks_at_the_start(world, &mut log);
         world.insert_resource(log);
-        world.insert_resource(scene.contact);
         world.insert_resource(BlockContactHistory::default());
         world.insert_resource(block_pair_laws(scene));
-        world.insert_resource(ContactWork::default());
         setup.keep_resource::<BlockContactHistory>("block springs");
-        setup.keep_resource::<ContactWork>("contact work");
         if scene.blocks.is_empty() {
             setup.keep_checkpointed::<BlockLog>("blocks");
         } else {
             setup.record::<BlockLog>("blocks", "blocks.csv");
+            setup.plot::<BlockLog>(rotation_figure);
         }
         Ok(())
     }
@@ -61,9 +57,7 @@ impl MpmPlugin for RigidBlocksPlugin {
         schedule.add_systems((
             rebuild_neighbour_lists.in_set(MpmSystems::Neighbours),
             compute_rigid_contacts.in_set(ContactStep::Blocks),
-            transfer_contact_forces.in_set(ContactTransferStep::Forces),
             move_rigid_blocks.in_set(MpmSystems::RigidBodies),
-            account_contact_work.in_set(DiagnosticsStep::ContactWork),
             record_blocks.in_set(DiagnosticsStep::Blocks),
         ));
     }
@@ -98,4 +92,38 @@ fn record_blocks_at_the_start(world: &mut World, log: &mut BlockLog) {
     for block in blocks {
         log.record(0.0, block);
     }
+}
+
+/// `block_rotation.png`: the rotation of every block that is not fixed, in
+/// degrees against time (`blocks.csv` has it in radians); none without
+/// such a block.
+fn rotation_figure(blocks: &BlockLog, context: &FigureContext) -> Vec<Figure> {
+    let moving: Vec<&str> = context
+        .scene
+        .blocks
+        .iter()
+        .filter(|b| b.motion != MotionSpec::Fixed)
+        .map(|b| b.name.as_str())
+        .collect();
+    if moving.is_empty() {
+        return Vec::new();
+    }
+    let curves = moving
+        .iter()
+        .map(|name| {
+            let index = blocks.names.iter().position(|n| n == name);
+            let samples = blocks
+                .samples
+                .iter()
+                .filter(move |s| Some(s.block as usize) == index);
+            Curve::new(*name, samples.map(|s| (s.time, s.angle.to_degrees())))
+        })
+        .collect();
+    vec![Figure {
+        file: "block_rotation.png".into(),
+        title: "Rotation of the blocks".into(),
+        x_label: "time (s)".into(),
+        y_label: "rotation (degrees, counter-clockwise)".into(),
+        curves,
+    }]
 }

@@ -29,7 +29,7 @@ pub struct Diagnostics {
     pub failure: Option<NumericalFailure>,
     /// Warnings found while stepping, in the order found (e.g. a point too
     /// loose for the time step); the run goes on.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<crate::warning::Warning>,
 }
 
 impl Diagnostics {

@@ -27,7 +27,7 @@ pub use load_work::LoadWork;
 pub(crate) use load_work::LoadedEdge;
 pub use records::{
     BlockLog, BlockPartSample, BlockSample, BodyPairLog, BodyPairSample, EnergyLog, EnergySample,
-    Probe, ProbeSample, Probes,
+    Probe, ProbeSample, Probes, Sampling,
 };
 pub use settings::{GRANULAR_RELAXATION, Gravity, PositionUpdate, Settings, UpdateScheme};
 pub(crate) use shared_layers::SharedLayers;

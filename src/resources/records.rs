@@ -37,27 +37,36 @@ pub struct ProbeSample {
     pub stress: SymTensor,
 }
 
-/// Probes and their samples, recorded every `every` steps, at step 0 and
-/// at the run's last step.
+/// When the records sample the run (`output.probe_interval`): every
+/// `every` steps, at step 0 and at the run's last step. Every record
+/// samples on these steps, so that a checkpoint's records agree (see
+/// `checkpoint::TimeRecord`).
+#[derive(Resource, Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sampling {
+    /// Recording period in steps (≥ 1).
+    pub every: u64,
+}
+
+impl Sampling {
+    /// Whether the step the clock has just taken is sampled: every
+    /// `every` steps, and the run's last step (its end, or where its last
+    /// stage ended it). Steps taken past the end (`Simulation::step` does
+    /// not stop there) keep the interval.
+    pub fn due(&self, clock: &crate::resources::Clock) -> bool {
+        clock.step.is_multiple_of(self.every.max(1)) || clock.step == clock.total_steps()
+    }
+}
+
+/// Probes and their samples, recorded when [`Sampling`] says.
 #[derive(Resource, Clone, Debug, Default, PartialEq)]
 pub struct Probes {
     /// The watched points.
     pub probes: Vec<Probe>,
-    /// Recording period in steps (≥ 1).
-    pub every: u64,
     /// Samples in time order, probes in order within a time.
     pub samples: Vec<ProbeSample>,
 }
 
 impl Probes {
-    /// Whether the step the clock has just taken is sampled: every
-    /// `every` steps, and the run's last step (its end, or where its last
-    /// stage ended it). Every record is sampled on these steps, so that a
-    /// checkpoint's records agree (see `checkpoint::TimeRecord`).
-    pub fn due(&self, clock: &crate::resources::Clock) -> bool {
-        clock.step.is_multiple_of(self.every.max(1)) || clock.step == clock.total_steps()
-    }
-
     /// Appends one sample per probe at `time`; `points_of` gives a body's points.
     pub fn record<'a>(
         &mut self,

@@ -107,5 +107,5 @@ pub struct StageLog {
     /// Finished stages, in order.
     pub records: Vec<StageRecord>,
     /// Warnings for the user (a stage that hit its `max_time`).
-    pub warnings: Vec<String>,
+    pub warnings: Vec<crate::warning::Warning>,
 }

@@ -5,6 +5,7 @@ use crate::components::{BlockTemplate, BodyName, MaterialPoints};
 use crate::contact::disk_shape_contact;
 use crate::math::Real;
 use crate::resources::{Geometry, Penetration};
+use crate::warning::{Warning, WarningKind};
 use bevy_ecs::prelude::*;
 
 /// Overlap between a block and a body's disks where the block is placed
@@ -32,7 +33,7 @@ pub fn placement_warnings(
     world: &World,
     bodies: &[Entity],
     checks: PlacementChecks,
-) -> Vec<String> {
+) -> Vec<Warning> {
     let name = &template.id.name;
     let mut warnings = Vec::new();
     for &body in bodies {
@@ -57,10 +58,10 @@ pub fn placement_warnings(
         };
         let limit = 2.0 * (lightest / stiffness).sqrt();
         if checks.dt > limit {
-            warnings.push(format!(
+            warnings.push(Warning::new(WarningKind::TimeStep, "time.dt", format!(
                 "time.dt = {:e} s exceeds the contact stability limit 2 sqrt(m_p / max(k_n, k_t)) = {limit:.4e} s of block '{name}' (lightest point {lightest:.4e} kg/m)",
                 checks.dt
-            ));
+            )));
         }
     }
     warnings
@@ -72,7 +73,7 @@ fn overlap_warning(
     template: &BlockTemplate,
     body: &str,
     points: &MaterialPoints,
-) -> Option<String> {
+) -> Option<Warning> {
     let parry_pose = template.pose.to_parry();
     let (depth, radius) = (0..points.len())
         .filter_map(|p| {
@@ -82,9 +83,9 @@ fn overlap_warning(
         })
         .fold((0.0, 0.0), |worst, c| if c.0 > worst.0 { c } else { worst });
     (depth > OVERLAP_WARNING_FRACTION * radius).then(|| {
-        format!(
+        Warning::new(WarningKind::Layout, format!("blocks[\"{}\"].position", template.id.name), format!(
             "block '{}' overlaps body '{body}' by {depth:e} m where it is placed (disk radius {radius:e} m): its contacts push the body away at once",
             template.id.name
-        )
+        ))
     })
 }

@@ -63,6 +63,7 @@ impl Scene {
                 probes: Vec::new(),
                 output: OutputSpec::default(),
                 stages: Vec::new(),
+                file_warnings: Vec::new(),
             },
         }
     }

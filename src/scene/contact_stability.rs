@@ -6,6 +6,7 @@ use crate::components::MaterialPoints;
 use crate::math::Real;
 use crate::resources::{BodyPairLaw, PositionUpdate, UpdateScheme};
 use crate::scene::Scene;
+use crate::warning::{Warning, WarningKind};
 
 /// A warning when the scene has DEM contacts (blocks with bodies, or body
 /// contact laws, not every one with a normal dashpot), runs some stage
@@ -16,7 +17,7 @@ use crate::scene::Scene;
 /// 1 + (ωΔt)²/2), or by the new grid velocity under USF or MUSL (the strain
 /// follows another field than the points). It names the setting and the
 /// safe alternative.
-pub fn undamped_contact_warning(scene: &Scene) -> Option<String> {
+pub fn undamped_contact_warning(scene: &Scene) -> Option<Warning> {
     let settings = &scene.settings;
     let update = settings.position_update()?;
     let feeds = match update {
@@ -56,10 +57,10 @@ pub fn undamped_contact_warning(scene: &Scene) -> Option<String> {
         undamped |= damping.iter().all(|&d| d == 0.0);
     }
     (feeds && contacts && undamped).then(|| {
-        format!(
+        Warning::new(WarningKind::Contact, "settings.position_update", format!(
             "settings.position_update: {update:?} under {:?} feeds undamped DEM contact springs energy (an elastic body resting on a block gains energy and leaves it); use the default position update (leave position_update out: RemappedVelocity), or damping",
             settings.scheme
-        )
+        ))
     })
 }
 
@@ -77,9 +78,9 @@ pub fn body_contact_stability_warnings(
     dt: Real,
     bodies: &[(&str, &MaterialPoints)],
     laws: &[BodyPairLaw],
-) -> Vec<String> {
+) -> Vec<Warning> {
     let lightest = |p: &MaterialPoints| p.mass.iter().copied().fold(Real::INFINITY, Real::min);
-    let mut warnings: Vec<(Real, String)> = Vec::new();
+    let mut warnings: Vec<(Real, Warning)> = Vec::new();
     for pair in laws {
         let (a, b) = (&bodies[pair.a as usize], &bodies[pair.b as usize]);
         let (m_a, m_b) = (lightest(a.1), lightest(b.1));
@@ -90,21 +91,21 @@ pub fn body_contact_stability_warnings(
         let stiffness = pair.law.normal_stiffness.max(pair.law.tangential_stiffness);
         let limit = 2.0 * (reduced / stiffness).sqrt();
         if dt > limit {
-            warnings.push((limit, format!(
+            warnings.push((limit, Warning::new(WarningKind::TimeStep, "time.dt", format!(
                 "time.dt = {dt:e} s exceeds the contact stability limit 2 sqrt(m / max(k_n, k_t)) = {limit:.4e} s of bodies '{}' and '{}' (m = {reduced:.4e} kg/m, the reduced mass of their lightest points): the contact will gain energy and the run will likely blow up",
                 a.0, b.0
-            )));
+            ))));
         }
     }
     // A stable sort: equal limits keep the scene's pair order.
     warnings.sort_by(|x, y| x.0.total_cmp(&y.0));
     let more = warnings.len().saturating_sub(LISTED);
-    let mut listed: Vec<String> = warnings.into_iter().take(LISTED).map(|(_, w)| w).collect();
+    let mut listed: Vec<Warning> = warnings.into_iter().take(LISTED).map(|(_, w)| w).collect();
     if more > 0 {
         let pairs = if more == 1 { "pair" } else { "pairs" };
-        listed.push(format!(
+        listed.push(Warning::new(WarningKind::TimeStep, "time.dt", format!(
             "{more} more {pairs} of bodies under contact laws exceed their contact stability limits at time.dt = {dt:e} s"
-        ));
+        )));
     }
     listed
 }
@@ -154,7 +155,9 @@ mod tests {
         let warned = body_contact_stability_warnings(0.0201, &bodies, &laws);
         assert_eq!(warned.len(), 1);
         assert!(
-            warned[0].contains("= 2.0000e-2 s of bodies 'a' and 'b'"),
+            warned[0]
+                .message
+                .contains("= 2.0000e-2 s of bodies 'a' and 'b'"),
             "{}",
             warned[0]
         );
@@ -178,9 +181,13 @@ mod tests {
         let warned = body_contact_stability_warnings(1.0, &placed, &laws);
         assert_eq!(warned.len(), LISTED + 1, "{warned:?}");
         // The two lightest bodies, d and e, make the smallest limit.
-        assert!(warned[0].contains("bodies 'd' and 'e'"), "{}", warned[0]);
         assert!(
-            warned[LISTED].starts_with("7 more pairs"),
+            warned[0].message.contains("bodies 'd' and 'e'"),
+            "{}",
+            warned[0]
+        );
+        assert!(
+            warned[LISTED].message.starts_with("7 more pairs"),
             "{}",
             warned[LISTED]
         );

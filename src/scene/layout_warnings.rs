@@ -4,6 +4,7 @@
 use crate::components::MaterialPoints;
 use crate::math::{DVec2, Real};
 use crate::resources::{BodyPairLaw, Grid};
+use crate::warning::{Warning, WarningKind};
 use std::collections::HashMap;
 
 /// How close (in cells) a body's points' domains may come to an open grid
@@ -27,7 +28,7 @@ pub fn free_edge_warnings(
     grid: &Grid,
     gravity: DVec2,
     bodies: &[(&str, &MaterialPoints)],
-) -> Vec<String> {
+) -> Vec<Warning> {
     let touch = TOUCH * grid.cell_size;
     let mut warnings = Vec::new();
     for (name, points) in bodies {
@@ -40,9 +41,9 @@ pub fn free_edge_warnings(
             let pulled_off = gravity.dot(edge.outward) < 0.0;
             if !edge.condition.is_wall() && edge.gap <= touch && !pulled_off {
                 let (edge, at) = (edge.name, edge.at);
-                warnings.push(format!(
+                warnings.push(Warning::new(WarningKind::Layout, format!("bodies[\"{name}\"]"), format!(
                     "body '{name}' touches the grid's {edge} edge {at}, which is Free (the default, unless grid.edges or the first stage's edges set it): nothing holds the body there, and the run stops if a point's shape functions reach past the edge; give it a wall (Slip or Fixed) or extend the grid"
-                ));
+                )));
             }
         }
     }
@@ -57,16 +58,16 @@ pub fn free_edge_warnings(
 pub fn body_overlap_warnings(
     bodies: &[(&str, &MaterialPoints)],
     laws: &[BodyPairLaw],
-) -> Vec<String> {
+) -> Vec<Warning> {
     let mut warnings = Vec::new();
     for law in laws {
         let (a, b) = (&bodies[law.a as usize], &bodies[law.b as usize]);
         let (pairs, deepest) = overlapping_disks(a.1, b.1);
         if pairs > 0 {
-            warnings.push(format!(
+            warnings.push(Warning::new(WarningKind::Layout, "body_contacts", format!(
                 "bodies '{}' and '{}' overlap at the start: {pairs} pairs of their points' contact disks overlap, the deepest by {deepest:.3e} m; their contact law pushes them apart at once: move them apart by at least that",
                 a.0, b.0
-            ));
+            )));
         }
     }
     warnings
@@ -145,13 +146,19 @@ mod tests {
         let bodies = [("slab", &resting), ("lifted", &lifted)];
         let warnings = free_edge_warnings(&grid, down, &bodies);
         assert_eq!(warnings.len(), 1, "{warnings:?}");
-        assert!(warnings[0].contains("body 'slab' touches the grid's bottom edge y = 0"));
+        assert!(
+            warnings[0]
+                .message
+                .contains("body 'slab' touches the grid's bottom edge y = 0")
+        );
         // Hanging from the top edge: gravity pulls it off, unless it points up.
         let hanging = row(DVec2::new(2.0, 9.5), 3);
         assert!(free_edge_warnings(&grid, down, &[("hanging", &hanging)]).is_empty());
         let up = free_edge_warnings(&grid, -down, &[("hanging", &hanging)]);
         assert!(
-            up[0].contains("body 'hanging' touches the grid's top edge y = 10"),
+            up[0]
+                .message
+                .contains("body 'hanging' touches the grid's top edge y = 10"),
             "{up:?}"
         );
         grid.edges.bottom = EdgeCondition::Slip;
@@ -182,8 +189,10 @@ mod tests {
         // Each point of `into` reaches one of `below`'s, √(0.25² + 0.75²) =
         // 0.791 away (the next is 1.06 away): δ = 1 − 0.791 = 0.209.
         assert!(
-            warnings[0].contains("bodies 'below' and 'into' overlap at the start: 10 pairs")
-                && warnings[0].contains("2.094e-1 m"),
+            warnings[0]
+                .message
+                .contains("bodies 'below' and 'into' overlap at the start: 10 pairs")
+                && warnings[0].message.contains("2.094e-1 m"),
             "{warnings:?}"
         );
     }

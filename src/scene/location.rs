@@ -76,6 +76,26 @@ impl SourceLocation {
     }
 }
 
+/// Where the field `field` of the scene's section `section` is written in
+/// `source` (comments skipped): the byte ranges of its name and of its
+/// value; `None` when either is not written.
+pub(crate) fn section_field(
+    source: &str,
+    section: &str,
+    field: &str,
+) -> Option<(std::ops::Range<usize>, std::ops::Range<usize>)> {
+    let text = without_comments(source);
+    let at = find_anchor(&text, 0, section, Anchor::Section)? + section.len();
+    let scope = value_end(&text, at, false);
+    let name = find_anchor(&text[..scope], at, field, Anchor::Any)?;
+    let colon = name + field.len() + text[name + field.len()..].find(':')?;
+    let end = value_end(&text, colon + 1, false);
+    let value = &text[colon + 1..end];
+    let start = colon + 1 + (value.len() - value.trim_start().len());
+    let end = colon + 1 + value.trim_end().len();
+    Some((name..name + field.len(), start..end))
+}
+
 /// Which matches of an anchor count.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Anchor {

@@ -9,6 +9,7 @@
 
 mod axisymmetry;
 mod builder;
+mod compat;
 mod contact_stability;
 pub(crate) mod input_file;
 mod layout_warnings;
@@ -99,6 +100,11 @@ pub struct Scene {
     /// `time.end`.
     #[serde(default)]
     pub stages: Vec<StageSpec>,
+    /// Warnings about how the scene's file is written: the spellings of
+    /// earlier releases it was read with, each with its present one. Shown
+    /// with the scene's other warnings; empty for a scene built in code.
+    #[serde(skip)]
+    pub file_warnings: Vec<crate::warning::Warning>,
 }
 
 fn default_gravity() -> DVec2 {
@@ -596,6 +602,11 @@ impl Scene {
     pub fn parse(source: &str, path: &Path) -> Result<Self, SceneError> {
         // Editors on Windows may start a UTF-8 file with a byte-order mark.
         let source = source.strip_prefix('\u{feff}').unwrap_or(source);
+        let present = compat::present_spelling(source);
+        let (source, file_warnings) = match &present {
+            Some((text, warnings)) => (text.as_str(), warnings.clone()),
+            None => (source, Vec::new()),
+        };
         let mut scene: Scene = ron::from_str(source).map_err(|e| {
             let mut message = e.code.to_string();
             if matches!(e.code, ron::Error::ExpectedOption) {
@@ -623,6 +634,7 @@ impl Scene {
             }
             scene.name = stem;
         }
+        scene.file_warnings = file_warnings;
         let folder = path.parent().unwrap_or(Path::new(""));
         if let Err((body, message)) = scene.read_point_files_in(folder) {
             return Err(SceneError::Invalid {

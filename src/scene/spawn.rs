@@ -10,6 +10,7 @@ use crate::components::{
 };
 use crate::math::{DVec2, Real, SymTensor};
 use crate::resources::Grid;
+use crate::warning::{Warning, WarningKind};
 use bevy_ecs::prelude::*;
 
 /// A scene's bodies and blocks in a new world.
@@ -19,16 +20,18 @@ pub(crate) struct SpawnedScene {
     /// The blocks absent at the start (stages add them), in scene order.
     pub absent_blocks: Vec<BlockTemplate>,
     /// Warnings for the user about the bodies and blocks.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 /// Spawns the bodies of a scene that passed [`Scene::validate`], one
 /// entity each in scene order, then its blocks present at the start.
 pub(crate) fn spawn_scene(scene: &Scene) -> Result<SpawnedScene, SceneError> {
     let mut world = World::new();
-    let (bodies, mut warnings) = spawn_bodies(scene, &mut world, &scene.grid.grid())?;
+    let (bodies, body_warnings) = spawn_bodies(scene, &mut world, &scene.grid.grid())?;
     let (block_warnings, absent_blocks) =
         super::spawn_blocks::spawn_blocks(scene, &mut world, &bodies)?;
+    let mut warnings = scene.file_warnings.clone();
+    warnings.extend(body_warnings);
     warnings.extend(block_warnings);
     Ok(SpawnedScene {
         world,
@@ -43,7 +46,7 @@ fn spawn_bodies(
     scene: &Scene,
     world: &mut World,
     grid: &Grid,
-) -> Result<(Vec<Entity>, Vec<String>), SceneError> {
+) -> Result<(Vec<Entity>, Vec<Warning>), SceneError> {
     let mut warnings = Vec::new();
     let mut bodies = Vec::with_capacity(scene.bodies.len());
     for (index, spec) in scene.bodies.iter().enumerate() {
@@ -69,12 +72,12 @@ fn spawn_bodies(
             .filter(|s| !material.model.admits(s))
             .count();
         if outside > 0 {
-            warnings.push(format!(
+            warnings.push(Warning::new(WarningKind::InitialStress, format!("bodies[\"{}\"].initial_stress", spec.name), format!(
                 "body '{}': the initial stress of {outside} of its {} points lies outside the yield surface of material '{}' (a `k0` below its active or above its passive ratio?): the first step returns them to it, and energy.csv's balance misses part of that return's energy",
                 spec.name,
                 points.len(),
                 material.name
-            ));
+            )));
         }
         let lightest = points.mass.iter().copied().fold(Real::INFINITY, Real::min);
         let entity = world

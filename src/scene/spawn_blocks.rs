@@ -12,6 +12,7 @@ use crate::contact::ContactLaw;
 use crate::math::Real;
 use crate::resources::BlockPairLaws;
 use crate::rigid::{MAX_SUBSTEPS, PlacementChecks, placement_warnings, substeps_needed};
+use crate::warning::{Warning, WarningKind};
 use bevy_ecs::prelude::*;
 
 /// Spawns one entity per block present at the start (`present`), in scene
@@ -22,7 +23,7 @@ pub fn spawn_blocks(
     scene: &Scene,
     world: &mut World,
     bodies: &[Entity],
-) -> Result<(Vec<String>, Vec<BlockTemplate>), SceneError> {
+) -> Result<(Vec<Warning>, Vec<BlockTemplate>), SceneError> {
     let mut warnings = Vec::new();
     let mut absent = Vec::new();
     let mut substep_input = Vec::with_capacity(scene.blocks.len());
@@ -49,9 +50,9 @@ pub fn spawn_blocks(
     }
     let needed = substeps_needed(&substep_input, &block_pair_laws(scene), scene.time.dt);
     if needed > MAX_SUBSTEPS {
-        warnings.push(format!(
+        warnings.push(Warning::new(WarningKind::TimeStep, "time.dt", format!(
             "the block-block contacts need {needed} sub-steps per step (ten per contact period 2π sqrt(m / k_n)); only {MAX_SUBSTEPS} are taken, so they will likely blow up: lower time.dt or the normal_stiffness of the stiffest pair's law (a block's contact, or its block_contacts entry)"
-        ));
+        )));
     }
     Ok((warnings, absent))
 }

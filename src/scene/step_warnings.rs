@@ -5,6 +5,7 @@
 use super::{Scene, StageEnd};
 use crate::math::Real;
 use crate::resources::Clock;
+use crate::warning::{Warning, WarningKind};
 
 /// How far, in steps, a duration (`time.end`, a stage's, an output
 /// interval) may be from the whole number of steps the run gives it before
@@ -29,16 +30,16 @@ fn steps_time(steps: u64, dt: Real) -> Real {
 /// output interval the scene gives (shorter than the run), more than
 /// [`OFF_STEP_TOLERANCE`] of a step away from the steps the run takes for
 /// it, with those steps.
-pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<String> {
+pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<Warning> {
     let mut warnings = Vec::new();
     let steps = clock.total_steps();
     if off_step(clock.end, clock.dt, steps) {
-        warnings.push(format!(
+        warnings.push(Warning::new(WarningKind::OffStep, "time.end", format!(
             "time.end = {:e} s is not a multiple of time.dt = {:e} s: the run takes the nearest whole number of steps, {steps}, to t = {:e} s",
             clock.end,
             clock.dt,
             steps_time(steps, clock.dt)
-        ));
+        )));
     }
     for stage in &scene.stages {
         if let StageEnd::Duration(d) = stage.end {
@@ -58,10 +59,10 @@ pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<String> {
                         steps_time(stage_steps, clock.dt)
                     )
                 };
-                warnings.push(format!(
+                warnings.push(Warning::new(WarningKind::OffStep, format!("stages[\"{}\"].end", stage.name), format!(
                     "stage '{}': Duration({d:e}) is not a multiple of time.dt = {:e} s: the stage takes {takes}",
                     stage.name, clock.dt
-                ));
+                )));
             }
         }
     }
@@ -80,14 +81,14 @@ pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<String> {
         for stage in &scene.stages {
             let end = start.saturating_add(stage.end.most_steps(clock.dt));
             if end > steps {
-                warnings.push(format!(
+                warnings.push(Warning::new(WarningKind::OffStep, "time.end", format!(
                     "time.end = {:e} s cuts stage '{}' ({:e} s to {:e} s) short; the stages take {:e} s in all",
                     clock.end,
                     stage.name,
                     steps_time(start, clock.dt),
                     steps_time(end, clock.dt),
                     steps_time(all, clock.dt)
-                ));
+                )));
                 break;
             }
             start = end;
@@ -115,11 +116,11 @@ pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<String> {
         };
         let every = super::whole_steps(interval, clock.dt);
         if off_step(interval, clock.dt, every) {
-            warnings.push(format!(
+            warnings.push(Warning::new(WarningKind::OffStep, format!("output.{field}"), format!(
                 "output.{field} = {interval:e} s is not a multiple of time.dt = {:e} s: {what} every {every} step(s), {:e} s",
                 clock.dt,
                 steps_time(every, clock.dt)
-            ));
+            )));
         }
     }
     warnings

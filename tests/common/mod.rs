@@ -34,11 +34,20 @@ impl AsRef<Path> for TempFolder {
     }
 }
 
+/// The repository's root: the engine's folder, which the workspace's
+/// other packages (`cli/`, `verify/`) sit in.
+pub fn repository_root() -> PathBuf {
+    let package = Path::new(env!("CARGO_MANIFEST_DIR"));
+    package
+        .ancestors()
+        .find(|dir| dir.join("scenes").is_dir())
+        .unwrap_or(package)
+        .to_path_buf()
+}
+
 /// Path of a file in `scenes/`.
 pub fn scene_path(file: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("scenes")
-        .join(file)
+    repository_root().join("scenes").join(file)
 }
 
 /// Loads and validates a scene of `scenes/`.
@@ -79,21 +88,13 @@ pub fn refusal(scene: &Scene) -> String {
 
 /// The samples of the probe named `name`.
 pub fn probe_samples(sim: &Simulation, name: &str) -> Vec<mpdem::resources::ProbeSample> {
-    mpdem::verify::probe_samples(sim, name).unwrap_or_else(|e| panic!("{e}"))
-}
-
-/// Runs the `mpdem verify` case `name` on the scenes of `scenes/` (plots go
-/// to `out/verify/`), prints its report and asserts that it was measured
-/// and that no check missed its target.
-pub fn verify_case(name: &str) -> mpdem::verify::CaseReport {
-    let case = mpdem::verify::case(name).expect("a verify case");
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let quiet = |_: mpdem::verify::RunEvent| {};
-    let ctx = mpdem::verify::Context::new(&root.join("scenes"), &root.join("out/verify"), &quiet);
-    let report = mpdem::verify::CaseReport::run(case, &ctx);
-    print!("{report}");
-    assert!(report.all_met(), "{name}: a target is missed, see above");
-    report
+    let probes = sim.world().resource::<Probes>();
+    let index = probes
+        .probes
+        .iter()
+        .position(|p| p.name == name)
+        .unwrap_or_else(|| panic!("the scene has no probe '{name}'"));
+    probes.series(index).copied().collect()
 }
 
 /// Runs `f` on a rayon pool of `threads` workers.

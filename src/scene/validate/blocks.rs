@@ -1,0 +1,88 @@
+//! The rigid blocks and their contact settings.
+
+use super::{Locator, nth_name, quoted};
+use crate::components::RigidVelocity;
+use crate::contact::ForceApplication;
+use crate::rules;
+use crate::scene::{MotionSpec, Scene, SceneError};
+use std::collections::BTreeSet;
+
+impl Scene {
+    /// The rigid blocks; returns their names.
+    pub(super) fn check_blocks<'s>(&'s self, v: &Locator) -> Result<BTreeSet<&'s str>, SceneError> {
+        let mut block_names = BTreeSet::new();
+        for (k, block) in self.blocks.iter().enumerate() {
+            let name = quoted(&block.name);
+            let fail = |field: &str, detail: String| {
+                v.invalid(
+                    &["blocks", &name, field],
+                    format!("block '{}': {detail}", block.name),
+                )
+            };
+            if !block_names.insert(block.name.as_str()) {
+                return Err(v.invalid(
+                    &nth_name("blocks", k),
+                    format!("block name '{}' is used twice", block.name),
+                ));
+            }
+            block
+                .shape
+                .build()
+                .map_err(|e| fail("shape", e.to_string()))?;
+            if !(block.position.is_finite() && block.angle.is_finite()) {
+                return Err(fail(
+                    "position",
+                    "position and angle must be finite".to_string(),
+                ));
+            }
+            block
+                .contact
+                .check()
+                .map_err(|e| fail("contact", e.to_string()))?;
+            let initial = match &block.motion {
+                MotionSpec::Fixed => RigidVelocity::default(),
+                MotionSpec::Kinematic(v)
+                | MotionSpec::Dynamic { velocity: v, .. }
+                | MotionSpec::DynamicWithMass { velocity: v, .. } => *v,
+            };
+            if !(initial.linear.is_finite() && initial.angular.is_finite()) {
+                return Err(fail("motion", "velocity must be finite".to_string()));
+            }
+            if let MotionSpec::DynamicWithMass {
+                mass,
+                inertia,
+                center,
+                ..
+            } = block.motion
+            {
+                rules::positive(mass).map_err(|e| fail("mass", format!("mass: {e}")))?;
+                rules::positive(inertia).map_err(|e| fail("inertia", format!("inertia: {e}")))?;
+                if !center.is_finite() {
+                    return Err(fail("center", "center must be finite".to_string()));
+                }
+            }
+            if let MotionSpec::Dynamic { density, .. } = block.motion {
+                rules::positive(density).map_err(|e| fail("density", format!("density: {e}")))?;
+            }
+        }
+        Ok(block_names)
+    }
+
+    /// The contact settings.
+    pub(super) fn check_contact(&self, v: &Locator) -> Result<(), SceneError> {
+        if self.contact.iter_period == Some(0) {
+            return Err(v.invalid(
+                &["contact", "iter_period"],
+                "contact.iter_period must be at least 1".into(),
+            ));
+        }
+        if let ForceApplication::Traction { points: 0 } = self.contact.force_application {
+            let message = "contact.force_application: Traction needs at least 1 point".into();
+            return Err(v.invalid(&["contact", "force_application"], message));
+        }
+        if let Some(margin) = self.contact.margin {
+            rules::positive(margin).map_err(|e| v.field(&["contact", "margin"], e))?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,31 @@
+//! The numerical settings.
+
+use super::Locator;
+use crate::scene::axisymmetry::axisymmetry_error;
+use crate::scene::{Scene, SceneError};
+
+impl Scene {
+    /// Gravity and the numerical settings.
+    pub(super) fn check_settings(&self, v: &Locator) -> Result<(), SceneError> {
+        if !self.gravity.is_finite() {
+            return Err(v.invalid(
+                &["gravity"],
+                format!("gravity must be finite, got {}", self.gravity),
+            ));
+        }
+        self.settings
+            .check()
+            .map_err(|e| v.field(&["settings"], e))?;
+        if let Some((anchors, message)) = axisymmetry_error(self) {
+            let anchors: Vec<&str> = anchors.iter().map(String::as_str).collect();
+            return Err(v.invalid(&anchors, message));
+        }
+        if self.settings.xpic_order.is_some() && !self.shared_layers().is_empty() {
+            return Err(v.invalid(
+                &["settings", "xpic_order"],
+                "settings.xpic_order: XPIC is not available with contact groups yet (its projections run per body); use pic_fraction".into(),
+            ));
+        }
+        Ok(())
+    }
+}
