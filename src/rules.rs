@@ -10,32 +10,38 @@ use serde::{Deserialize, Deserializer, de::Error};
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum RuleError {
     /// Not a finite value > 0.
-    #[error("expected a finite value > 0, got {0}")]
+    #[error("expected a finite value > 0, got {}", shown(*.0))]
     NotPositive(Real),
     /// Not a finite value ≥ 0.
-    #[error("expected a finite value ≥ 0, got {0}")]
+    #[error("expected a finite value ≥ 0, got {}", shown(*.0))]
     Negative(Real),
     /// Poisson's ratio outside (−1, 0.5).
-    #[error("expected Poisson's ratio in (-1, 0.5), got {0}")]
+    #[error("expected Poisson's ratio in (-1, 0.5), got {}", shown(*.0))]
     PoissonRatio(Real),
     /// Outside [0, 1].
-    #[error("expected a value in [0, 1], got {0}")]
+    #[error("expected a value in [0, 1], got {}", shown(*.0))]
     NotFraction(Real),
     /// Outside (0, 1].
-    #[error("expected a ratio in (0, 1], got {0}")]
+    #[error("expected a ratio in (0, 1], got {}", shown(*.0))]
     NotRatio(Real),
     /// A damping coefficient outside [0, 1].
-    #[error("expected a damping coefficient in [0, 1], got {0}")]
+    #[error("expected a damping coefficient in [0, 1], got {}", shown(*.0))]
     NotDamping(Real),
     /// An XPIC order outside 1 to 10.
     #[error("expected an XPIC order from 1 to {MAX_XPIC_ORDER}, got {0}")]
     XpicOrder(u32),
     /// An angle outside [0, 90) degrees.
-    #[error("expected an angle in [0, 90) degrees, got {0}")]
+    #[error("expected an angle in [0, 90) degrees, got {}", shown(*.0))]
     Angle(Real),
     /// A deviatoric eccentricity outside (0.5, 1].
-    #[error("expected a deviatoric eccentricity in (0.5, 1], got {0}")]
+    #[error("expected a deviatoric eccentricity in (0.5, 1], got {}", shown(*.0))]
     Eccentricity(Real),
+    /// A density outside the range of materials.
+    #[error(
+        "expected a density from {MIN_DENSITY} to {MAX_DENSITY:e} kg/m³, got {} kg/m³",
+        shown(*.0)
+    )]
+    Density(Real),
     /// A name that cannot be a file name, and why.
     #[error("{0}")]
     FileName(String),
@@ -63,6 +69,34 @@ pub enum ParameterError {
     /// why.
     #[error("{0}")]
     Inconsistent(String),
+}
+
+/// `x` with the digits that matter: plainly between 1e-4 and 1e7, in
+/// scientific notation beyond (1e300, not three hundred digits).
+pub fn shown(x: Real) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e7).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// Lightest density a material or a block may have (kg/m³): below air's
+/// (1.2), below any solid's, liquid's or foam's; a smaller value is a unit
+/// typed wrong, and makes the time step's limits meaningless.
+pub const MIN_DENSITY: Real = 0.1;
+
+/// Heaviest density a material or a block may have (kg/m³): the densest
+/// metal (22 600) scaled up 40 000 times for a quasi-static run.
+pub const MAX_DENSITY: Real = 1e9;
+
+/// A density within [`MIN_DENSITY`] and [`MAX_DENSITY`].
+pub fn density(value: Real) -> Result<Real, RuleError> {
+    if (MIN_DENSITY..=MAX_DENSITY).contains(&value) {
+        Ok(value)
+    } else {
+        Err(RuleError::Density(value))
+    }
 }
 
 /// A value must be finite and strictly positive.
@@ -226,6 +260,11 @@ fn checked<'de, D: Deserializer<'de>>(
     rule: fn(Real) -> Result<Real, RuleError>,
 ) -> Result<Real, D::Error> {
     rule(Real::deserialize(deserializer)?).map_err(D::Error::custom)
+}
+
+/// `deserialize_with` form of [`density`].
+pub fn de_density<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
+    checked(d, density)
 }
 
 /// `deserialize_with` form of [`positive`].

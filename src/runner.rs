@@ -123,6 +123,13 @@ pub enum RunError {
         /// One of its entries.
         example: PathBuf,
     },
+    /// The folder holds a symbolic link, which the run would write through,
+    /// outside the folder.
+    #[error(
+        "{} is a symbolic link: a run writes only inside its output folder, and would write through it; remove it, or choose another folder (--out)",
+        .0.display()
+    )]
+    SymbolicLink(PathBuf),
     /// The folder holds the results of another scene file's run.
     #[error(
         "{} holds the results of {}, not of {}: choose another folder (--out), or --overwrite to replace them",
@@ -314,6 +321,9 @@ impl Runner {
                     example,
                 });
             }
+        }
+        if let Some(link) = symbolic_link_in(&options.out).map_err(RunError::Output)? {
+            return Err(RunError::SymbolicLink(link));
         }
         let sim = match Simulation::with_plugins(scene, plugins) {
             Ok(sim) => sim,
@@ -629,6 +639,30 @@ fn foreign_entry(dir: &Path) -> std::io::Result<Option<PathBuf>> {
         let entry = entry.map_err(|e| crate::files::located(dir, e))?;
         if entry.file_name() != LOCK_FILE {
             return Ok(Some(entry.path()));
+        }
+    }
+    Ok(None)
+}
+
+/// The first symbolic link in the output folder `dir` or its `vtk/`, the
+/// folders a run writes into (the folder itself may be one: the user
+/// chose it).
+fn symbolic_link_in(dir: &Path) -> std::io::Result<Option<PathBuf>> {
+    for folder in [dir.to_path_buf(), dir.join("vtk")] {
+        let entries = match std::fs::read_dir(&folder) {
+            Ok(entries) => entries,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => continue,
+            Err(e) if e.kind() == std::io::ErrorKind::NotADirectory => continue,
+            Err(e) => return Err(crate::files::located(&folder, e)),
+        };
+        for entry in entries {
+            let entry = entry.map_err(|e| crate::files::located(&folder, e))?;
+            let kind = entry
+                .file_type()
+                .map_err(|e| crate::files::located(&entry.path(), e))?;
+            if kind.is_symlink() {
+                return Ok(Some(entry.path()));
+            }
         }
     }
     Ok(None)

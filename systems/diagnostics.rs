@@ -8,22 +8,33 @@ use crate::math::DVec2;
 use crate::parallel::MIN_POINTS_PER_TASK;
 use crate::resources::{
     BlockLog, BodyContacts, BodyPairLog, BodyPairSample, Clock, ContactWork, Diagnostics,
-    EnergyLog, EnergySample, Gravity, LoadWork, MAX_CONTACT_BODIES, NumericalFailure, PairTally,
-    Probes, Sampling, Settings,
+    EnergyLog, EnergySample, FailureSite, Gravity, LoadWork, MAX_CONTACT_BODIES, NumericalFailure,
+    PairTally, Probes, Sampling, Settings,
 };
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
 
 /// Stops a blow-up before it reaches any output: reports the first point of
 /// each body with a non-finite position, velocity or stress, or a
-/// non-positive volume (an inverted deformation gradient).
+/// non-positive volume (an inverted deformation gradient), and each block
+/// whose pose, velocity or reaction is not finite.
 ///
-/// Reads: `Clock`, `BodyIndex`, `BodyName`, `MaterialPoints`. Writes: `Diagnostics`.
+/// Reads: `Clock`, `BodyIndex`, `BodyName`, `MaterialPoints`, `BlockId`,
+/// `Pose`, `RigidVelocity`, `Reaction`. Writes: `Diagnostics`.
+/// What `check_finite` reads of a block.
+type BlockState<'a> = (
+    &'a BlockId,
+    &'a Pose,
+    &'a RigidVelocity,
+    Option<&'a Reaction>,
+);
+
 pub fn check_finite(
     clock: Res<Clock>,
     mut diagnostics: ResMut<Diagnostics>,
     mut order: Local<Vec<(BodyIndex, Entity)>>,
     bodies: Query<(Entity, &BodyIndex, &BodyName, &MaterialPoints, &Material)>,
+    blocks: Query<(&BlockId, &Pose, &RigidVelocity, Option<&Reaction>)>,
 ) {
     sort_into_scene_order(&mut order, bodies.iter().map(|(e, i, ..)| (*i, e)));
     for (name, points, material) in order
@@ -40,12 +51,44 @@ pub fn check_finite(
             diagnostics.report(NumericalFailure {
                 step: clock.step + 1,
                 time: clock.time,
-                body: name.0.clone(),
-                point: p,
+                at: FailureSite::Point {
+                    body: name.0.clone(),
+                    point: p,
+                },
                 field,
                 detail: detail + granular_hint(material),
             });
         }
+    }
+    let broken = |(_, pose, velocity, reaction): &BlockState| {
+        [
+            ("pose", pose.origin.is_finite() && pose.angle.is_finite()),
+            (
+                "velocity",
+                velocity.linear.is_finite() && velocity.angular.is_finite(),
+            ),
+            (
+                "reaction",
+                reaction.is_none_or(|r| r.force.is_finite() && r.torque.is_finite()),
+            ),
+        ]
+        .into_iter()
+        .find_map(|(field, finite)| (!finite).then_some(field))
+    };
+    if blocks.iter().all(|b| broken(&b).is_none()) {
+        return;
+    }
+    // After a failure only: the first broken block in scene order.
+    let mut in_order: Vec<BlockState> = blocks.iter().collect();
+    in_order.sort_unstable_by_key(|(id, ..)| id.index);
+    if let Some((id, field)) = in_order.iter().find_map(|b| Some((b.0, broken(b)?))) {
+        diagnostics.report(NumericalFailure {
+            step: clock.step + 1,
+            time: clock.time,
+            at: FailureSite::Block(id.name.clone()),
+            field,
+            detail: "is not finite".into(),
+        });
     }
 }
 
@@ -115,7 +158,8 @@ type EnergyScratch = (
 );
 
 /// Records probes and energies at the steps `Sampling` picks, unless the step
-/// failed (a broken state is never recorded). The contact and load terms
+/// failed (a broken state is never recorded); an energy that is not finite
+/// is a numerical failure, and nothing of its step is recorded. The contact and load terms
 /// count from the plugins that are built.
 ///
 /// Reads: `Clock`, `Sampling`, `Diagnostics`, `Gravity`, `Settings::geometry`, `MaterialPoints`, `Material`,
@@ -125,7 +169,7 @@ type EnergyScratch = (
 #[allow(clippy::too_many_arguments)] // one resource or query per energy term
 pub fn record_probes_and_energy(
     (clock, sampling): (Res<Clock>, Res<Sampling>),
-    diagnostics: Res<Diagnostics>,
+    mut diagnostics: ResMut<Diagnostics>,
     (gravity, settings): (Res<Gravity>, Res<Settings>),
     mut probes: ResMut<Probes>,
     mut energy: ResMut<EnergyLog>,
@@ -145,7 +189,6 @@ pub fn record_probes_and_energy(
         return;
     }
     let (order, sums, block_order) = &mut *scratch;
-    probes.record(clock.time, |entity| bodies.get(entity).ok().map(|b| b.2));
     sort_into_scene_order(order, bodies.iter().map(|(e, i, ..)| (*i, e)));
     let ordered = || order.iter().filter_map(|(_, e)| bodies.get(*e).ok());
     let mut sample = EnergySample::of(
@@ -170,6 +213,19 @@ pub fn record_probes_and_energy(
     sample.dissipated = -tangential_work - tangential;
     sample.blocks = -block_work;
     sample.loads = -load_work.map_or(0.0, |w| w.work);
+    if let Some(term) = sample.first_non_finite() {
+        // A broken sample is not recorded: the run stops with the series
+        // up to the step before.
+        diagnostics.report(NumericalFailure {
+            step: clock.step,
+            time: clock.time,
+            at: FailureSite::Record("energy.csv"),
+            field: term,
+            detail: "is not finite".into(),
+        });
+        return;
+    }
+    probes.record(clock.time, |entity| bodies.get(entity).ok().map(|b| b.2));
     energy.samples.push(sample);
 }
 

@@ -9,7 +9,8 @@ use crate::components::{
 use crate::contact::ForceApplication;
 use crate::math::DVec2;
 use crate::resources::{
-    Clock, ContactSettings, Diagnostics, Gravity, Grid, NumericalFailure, Settings, SharedLayers,
+    Clock, ContactSettings, Diagnostics, FailureSite, Gravity, Grid, NumericalFailure, Settings,
+    SharedLayers,
 };
 use crate::shape_functions::Stencil;
 use bevy_ecs::prelude::*;
@@ -86,8 +87,10 @@ pub fn particle_to_grid(
             diagnostics.report(NumericalFailure {
                 step: clock.step + 1,
                 time: clock.time,
-                body: name.0.clone(),
-                point: p,
+                at: FailureSite::Point {
+                    body: name.0.clone(),
+                    point: p,
+                },
                 field: "position",
                 detail: grid.why_outside(points.position[p], points.half_size[p]),
             });

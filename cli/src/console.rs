@@ -15,10 +15,48 @@ pub fn say(line: &str) -> Result<(), Failure> {
     }
 }
 
-/// Prints a line on standard error; a failure there has nowhere to be
-/// told, so it is dropped.
+/// Prints a line on standard error, made [`printable`]; a failure there
+/// has nowhere to be told, so it is dropped.
 pub fn say_err(line: &str) {
-    let _ = writeln!(std::io::stderr(), "{line}");
+    let _ = writeln!(std::io::stderr(), "{}", printable(line));
+}
+
+/// Longest word of a message printed whole (characters): longer ones are
+/// echoed input (a name, a line of a file) and are cut.
+const LONGEST_WORD: usize = 200;
+
+/// Characters of a cut word that are kept.
+const CUT_WORD_KEEPS: usize = 80;
+
+/// `line` safe for a terminal and readable: control characters but line
+/// breaks escaped (`\u{1b}`, `\t`), so that input echoed in a message
+/// cannot move the cursor or colour the terminal, and words longer than
+/// [`LONGEST_WORD`] cut to their first [`CUT_WORD_KEEPS`] characters with
+/// their length.
+pub fn printable(line: &str) -> String {
+    let mut out = String::with_capacity(line.len().min(4096));
+    for (k, word) in line.split(' ').enumerate() {
+        if k > 0 {
+            out.push(' ');
+        }
+        let length = word.chars().count();
+        let kept = if length > LONGEST_WORD {
+            CUT_WORD_KEEPS
+        } else {
+            length
+        };
+        for c in word.chars().take(kept) {
+            if c.is_control() && c != '\n' {
+                out.extend(c.escape_default());
+            } else {
+                out.push(c);
+            }
+        }
+        if kept < length {
+            out.push_str(&format!("… ({length} characters)"));
+        }
+    }
+    out
 }
 
 /// Prints a warning about the scene `file` on standard error, as `check`
@@ -59,4 +97,25 @@ pub fn with_threads(
     pool.build()
         .map_err(|source| Failure::Threads { threads, source })?
         .install(f)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn echoed_input_is_escaped_and_cut() {
+        assert_eq!(
+            printable("body 'a\u{1b}[31mred' at\tx"),
+            "body 'a\\u{1b}[31mred' at\\tx"
+        );
+        let long = format!("name '{}'", "x".repeat(1000));
+        let shown = printable(&long);
+        assert!(shown.ends_with("… (1002 characters)"), "{shown}");
+        assert_eq!(
+            shown.chars().count(),
+            5 + 80 + "… (1002 characters)".chars().count()
+        );
+        assert_eq!(printable("two\nlines"), "two\nlines");
+    }
 }

@@ -306,3 +306,41 @@ fn a_runner_runs_once() {
         Err(RunError::RanAlready)
     ));
 }
+
+#[test]
+fn a_symbolic_link_in_the_output_folder_is_refused_and_nothing_is_written_through_it() {
+    let (base, scene) = common::edited_wave_scene("links", "end: 1.0", "end: 0.01");
+    let out = base.join("out");
+    assert!(run_into(&scene, &out, &[]).status.success());
+    let outside = base.join("outside");
+    std::fs::create_dir_all(&outside).unwrap();
+    let target = outside.join("kept.txt");
+    std::fs::write(&target, "not the run's").unwrap();
+    let frame = out.join("vtk/points_00000.vtu");
+    // energy.csv, a frame file and vtk/ itself replaced by links out.
+    for link in [out.join("energy.csv"), frame.clone(), out.join("vtk")] {
+        let moved = base.join("moved");
+        if link.is_dir() {
+            std::fs::rename(&link, &moved).unwrap();
+            std::os::unix::fs::symlink(&outside, &link).unwrap();
+        } else {
+            std::fs::remove_file(&link).unwrap();
+            std::os::unix::fs::symlink(&target, &link).unwrap();
+        }
+        let rerun = run_into(&scene, &out, &[]);
+        let stderr = String::from_utf8_lossy(&rerun.stderr);
+        assert_eq!(rerun.status.code(), Some(1), "{stderr}");
+        assert!(
+            stderr.contains(&format!("{} is a symbolic link", link.display())),
+            "{stderr}"
+        );
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "not the run's");
+        assert_eq!(std::fs::read_dir(&outside).unwrap().count(), 1);
+        std::fs::remove_file(&link).unwrap();
+        if moved.exists() {
+            std::fs::rename(&moved, &link).unwrap();
+        } else {
+            std::fs::write(&link, "").unwrap();
+        }
+    }
+}

@@ -59,12 +59,12 @@ fn assert_error(error: SceneError, line: usize, expected: &str) {
 }
 
 #[test]
-fn non_positive_density_is_refused() {
+fn a_density_outside_the_range_of_materials_is_refused() {
     let e = parse_edited("density: 1000.0", "density: -5.0");
     assert_error(
         e,
         line_of("density: 1000.0", "density: -5.0", "density: -5.0"),
-        "expected a finite value > 0, got -5",
+        "expected a density from 0.1 to 1e9 kg/m³, got -5 kg/m³",
     );
 }
 
@@ -279,7 +279,8 @@ fn a_run_of_a_bad_scene_writes_nothing() {
     assert!(!status.status.success());
     let stderr = String::from_utf8_lossy(&status.stderr);
     assert!(
-        stderr.contains(&format!("{}:", scene.display())) && stderr.contains("> 0"),
+        stderr.contains(&format!("{}:", scene.display()))
+            && stderr.contains("expected a density from 0.1"),
         "{stderr}"
     );
     assert!(!out.exists(), "output written for a bad scene");

@@ -14,8 +14,8 @@ use crate::resources::{
     SharedLayers, UpdateScheme,
 };
 use crate::scene::{
-    Scene, SceneError, free_edge_warnings, granular_transfer_warning, off_step_warnings,
-    undamped_contact_warning,
+    Scene, SceneError, empty_region_warnings, free_edge_warnings, granular_transfer_warning,
+    off_step_warnings, undamped_contact_warning,
 };
 use crate::systems::{
     ContactTransferStep, DiagnosticsStep, MpmSystems, account_contact_work, advance_clock,
@@ -52,6 +52,7 @@ impl MpmPlugin for CorePlugin {
             &bodies,
             &grid,
         ));
+        setup.warn_all(empty_region_warnings(scene));
         setup.warn_all(undamped_contact_warning(scene));
         setup.warn_all(granular_transfer_warning(scene));
         let shared = share_layers(setup.world, &bodies, &scene.shared_layers());

@@ -5,20 +5,44 @@ use bevy_ecs::prelude::Resource;
 
 /// Where and how the numerics broke down.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("step {step} (t = {time:.6e} s): body '{body}', point {point}: {field} {detail}")]
+#[error("step {step} (t = {time:.6e} s): {at}: {field} {detail}")]
 pub struct NumericalFailure {
     /// Step during which it happened (1-based: the step being computed).
     pub step: u64,
     /// Simulated time at the start of that step (s).
     pub time: Real,
-    /// Name of the body.
-    pub body: String,
-    /// Index of the point in its body.
-    pub point: usize,
+    /// What broke down.
+    pub at: FailureSite,
     /// The offending field (e.g. "stress").
     pub field: &'static str,
     /// What is wrong with it.
     pub detail: String,
+}
+
+/// What a numerical failure is in.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FailureSite {
+    /// A material point.
+    Point {
+        /// Name of the body.
+        body: String,
+        /// Index of the point in its body.
+        point: usize,
+    },
+    /// A rigid block, by name.
+    Block(String),
+    /// A recorded series, by its file.
+    Record(&'static str),
+}
+
+impl std::fmt::Display for FailureSite {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Point { body, point } => write!(f, "body '{body}', point {point}"),
+            Self::Block(name) => write!(f, "block '{name}'"),
+            Self::Record(file) => write!(f, "the record {file}"),
+        }
+    }
 }
 
 /// Run-health record written by the systems. The first failure of a step is

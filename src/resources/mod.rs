@@ -21,7 +21,7 @@ pub use clock::Clock;
 pub(crate) use contact_settings::{BlockContactHistory, BlockContactKey, BlockPairLaws};
 pub use contact_settings::{ContactSettings, Penetration};
 pub use contact_work::ContactWork;
-pub use diagnostics::{Diagnostics, NumericalFailure};
+pub use diagnostics::{Diagnostics, FailureSite, NumericalFailure};
 pub use grid::{EdgeCondition, EdgeConditions, Grid, GridEdge};
 pub use load_work::LoadWork;
 pub(crate) use load_work::LoadedEdge;

@@ -140,6 +140,23 @@ pub struct EnergySample {
 }
 
 impl EnergySample {
+    /// The first term that is not finite, by its name in `energy.csv`.
+    pub fn first_non_finite(&self) -> Option<&'static str> {
+        [
+            ("kinetic", self.kinetic),
+            ("strain", self.strain),
+            ("contact", self.contact),
+            ("gravity", self.gravity),
+            ("inelastic", self.inelastic),
+            ("loads", self.loads),
+            ("blocks", self.blocks),
+            ("dissipated", self.dissipated),
+            ("damped", self.damped),
+        ]
+        .into_iter()
+        .find_map(|(name, value)| (!value.is_finite()).then_some(name))
+    }
+
     /// The energies of `bodies` (in scene order) at `time` under `gravity`
     /// in `geometry` (with what their materials dissipated), without
     /// contacts, loads and damping (`contact`, `loads`, `blocks`,

@@ -84,6 +84,9 @@ impl BlockShape {
                     if matches!(shape, Self::Compound { .. }) {
                         return Err(BlockShapeError::NestedCompound(k));
                     }
+                    if !(offset.is_finite() && angle.is_finite()) {
+                        return Err(BlockShapeError::PartPlacement(k));
+                    }
                     let part = shape.build().map_err(|e| BlockShapeError::Part {
                         part: k,
                         error: Box::new(e),
@@ -235,6 +238,9 @@ pub enum BlockShapeError {
     /// A compound inside a compound.
     #[error("part {0}: a compound cannot contain a compound")]
     NestedCompound(usize),
+    /// A part's offset or angle is not finite.
+    #[error("part {0}: its offset and angle must be finite")]
+    PartPlacement(usize),
     /// A part is wrong.
     #[error("part {part}: {error}")]
     Part {

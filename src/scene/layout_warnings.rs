@@ -4,6 +4,7 @@
 use crate::components::MaterialPoints;
 use crate::math::{DVec2, Real};
 use crate::resources::{BodyPairLaw, Grid};
+use crate::scene::Scene;
 use crate::warning::{Warning, WarningKind};
 use std::collections::HashMap;
 
@@ -68,6 +69,45 @@ pub fn body_overlap_warnings(
                 "bodies '{}' and '{}' overlap at the start: {pairs} pairs of their points' contact disks overlap, the deepest by {deepest:.3e} m; their contact law pushes them apart at once: move them apart by at least that",
                 a.0, b.0
             )));
+        }
+    }
+    warnings
+}
+
+/// A warning for each body's constraint region that holds no node of the
+/// grid (outside it, or between two nodes): it constrains nothing.
+pub fn empty_region_warnings(scene: &Scene) -> Vec<Warning> {
+    let grid = scene.grid.grid();
+    let h = grid.cell_size;
+    let cells = [grid.cells[0] as Real, grid.cells[1] as Real];
+    let tolerance = 1e-9;
+    let mut warnings = Vec::new();
+    for body in &scene.bodies {
+        for (k, region) in body.constraints.iter().enumerate() {
+            let (lo, hi) = (
+                (region.min - grid.origin) / h,
+                (region.max - grid.origin) / h,
+            );
+            let holds = |axis: usize| {
+                let first = (lo[axis] - tolerance).ceil().max(0.0);
+                let last = (hi[axis] + tolerance).floor().min(cells[axis]);
+                first <= last
+            };
+            if !(holds(0) && holds(1)) {
+                warnings.push(Warning::new(
+                    WarningKind::Layout,
+                    format!("bodies[\"{}\"].constraints", body.name),
+                    format!(
+                        "body '{}': constraint region {} ({} to {}) holds no node of the grid, which spans {} to {}: it constrains nothing",
+                        body.name,
+                        k + 1,
+                        region.min,
+                        region.max,
+                        grid.origin,
+                        grid.max()
+                    ),
+                ));
+            }
         }
     }
     warnings

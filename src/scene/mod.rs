@@ -29,7 +29,9 @@ pub use crate::resources::{
 pub use crate::rules::{ParameterError, RuleError};
 pub use builder::SceneBuilder;
 pub(crate) use contact_stability::{body_contact_stability_warnings, undamped_contact_warning};
-pub(crate) use layout_warnings::{body_overlap_warnings, free_edge_warnings};
+pub(crate) use layout_warnings::{
+    body_overlap_warnings, empty_region_warnings, free_edge_warnings,
+};
 pub use location::SourceLocation;
 pub use point_file::{ListedPoint, PointFileError, PointListProblem};
 pub use shapes::{Shape, ShapeError};
@@ -236,8 +238,9 @@ impl TryFrom<TimeInput> for TimeSpec {
 pub struct MaterialSpec {
     /// Name, referred to by bodies.
     pub name: String,
-    /// Mass density ρ (kg/m³), > 0.
-    #[serde(deserialize_with = "rules::de_positive")]
+    /// Mass density ρ (kg/m³), from [`rules::MIN_DENSITY`] to
+    /// [`rules::MAX_DENSITY`].
+    #[serde(deserialize_with = "rules::de_density")]
     pub density: Real,
     /// Constitutive model, e.g. `LinearElastic((youngs_modulus: 1e5, poisson_ratio: 0.0))`.
     pub model: MaterialModel,
@@ -612,6 +615,9 @@ impl Scene {
             if matches!(e.code, ron::Error::ExpectedOption) {
                 // An optional field is written Some(value), or left out.
                 message = "expected an optional value: Some(...) or None".into();
+            }
+            if matches!(e.code, ron::Error::ExceededRecursionLimit) {
+                message = "brackets nested too deep: a scene nests a few levels (a stage in the list of stages, a part in a compound); look for brackets opened and never closed".into();
             }
             // The parser stands past the time entry when it finds its end
             // missing or given twice: point at the entry instead.

@@ -67,6 +67,12 @@ impl Shape {
         {
             return Err(ShapeError::Unread(file.clone()));
         }
+        // Too few vertices have no bounds to speak of: say what is missing.
+        if let Self::Polygon { vertices } = self
+            && vertices.len() < 3
+        {
+            check_convex_polygon(vertices)?;
+        }
         let (lo, hi) = self.bounds();
         if !(lo.is_finite() && hi.is_finite()) {
             return Err(ShapeError::NotFinite { lo, hi });

@@ -19,6 +19,16 @@ fn off_step(duration: Real, dt: Real, steps: u64) -> bool {
     (duration / dt - steps as Real).abs() > OFF_STEP_TOLERANCE
 }
 
+/// A number of steps as a person reads it: whole up to a billion, in
+/// scientific notation beyond (a stage of 1.8e19 steps, not twenty digits).
+fn step_count(steps: u64) -> String {
+    if steps < 1_000_000_000 {
+        steps.to_string()
+    } else {
+        format!("{:.3e}", steps as Real)
+    }
+}
+
 /// `steps` × Δt rounded to 12 significant digits, so that a message says
 /// 3e-4 s and not 3.0000000000000003e-4 s.
 fn steps_time(steps: u64, dt: Real) -> Real {
@@ -55,7 +65,8 @@ pub fn off_step_warnings(scene: &Scene, clock: &Clock) -> Vec<Warning> {
                     )
                 } else {
                     format!(
-                        "{stage_steps} step(s), {:e} s",
+                        "{} step(s), {:e} s",
+                        step_count(stage_steps),
                         steps_time(stage_steps, clock.dt)
                     )
                 };

@@ -23,8 +23,11 @@ pub struct VelocityField {
 /// Why a velocity field cannot be parsed or evaluated.
 #[derive(Debug, thiserror::Error)]
 pub enum VelocityFieldError {
-    /// An expression does not parse.
-    #[error("velocity {axis} = \"{text}\": {source}")]
+    /// An expression does not parse. The parser's own message, which dumps
+    /// its internals, is kept as the source, not shown.
+    #[error(
+        "velocity {axis} = \"{text}\" does not parse: write an expression of x and y with + - * / ^, parentheses, numbers (2.5e-3) and functions such as sin, cos, exp and sqrt"
+    )]
     Parse {
         /// The component, `x` or `y`.
         axis: &'static str,
@@ -45,8 +48,9 @@ pub enum VelocityFieldError {
         /// The unknown variable.
         variable: String,
     },
-    /// An expression cannot be evaluated at a point.
-    #[error("velocity at {at}: {source}")]
+    /// An expression cannot be evaluated at a point (the evaluator's
+    /// message is kept as the source).
+    #[error("velocity at {at} cannot be evaluated")]
     Eval {
         /// The point.
         at: DVec2,

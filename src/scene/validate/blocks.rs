@@ -7,6 +7,10 @@ use crate::rules;
 use crate::scene::{MotionSpec, Scene, SceneError};
 use std::collections::BTreeSet;
 
+/// Most points a contact traction is split over (the paper's 4 resolve a
+/// point's edge; each point costs a stencil per contact and step).
+const MAX_TRACTION_POINTS: u32 = 64;
+
 impl Scene {
     /// The rigid blocks; returns their names.
     pub(super) fn check_blocks<'s>(&'s self, v: &Locator) -> Result<BTreeSet<&'s str>, SceneError> {
@@ -62,7 +66,7 @@ impl Scene {
                 }
             }
             if let MotionSpec::Dynamic { density, .. } = block.motion {
-                rules::positive(density).map_err(|e| fail("density", format!("density: {e}")))?;
+                rules::density(density).map_err(|e| fail("density", format!("density: {e}")))?;
             }
         }
         Ok(block_names)
@@ -76,9 +80,15 @@ impl Scene {
                 "contact.iter_period must be at least 1".into(),
             ));
         }
-        if let ForceApplication::Traction { points: 0 } = self.contact.force_application {
-            let message = "contact.force_application: Traction needs at least 1 point".into();
-            return Err(v.invalid(&["contact", "force_application"], message));
+        if let ForceApplication::Traction { points } = self.contact.force_application
+            && !(1..=MAX_TRACTION_POINTS).contains(&points)
+        {
+            return Err(v.field(
+                &["contact", "force_application"],
+                format!(
+                    "Traction takes 1 to {MAX_TRACTION_POINTS} points on the edge of a point's domain, got {points}: more segments than that resolve nothing finer and only cost time (the paper splits the edge in 4)"
+                ),
+            ));
         }
         if let Some(margin) = self.contact.margin {
             rules::positive(margin).map_err(|e| v.field(&["contact", "margin"], e))?;

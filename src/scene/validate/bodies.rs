@@ -260,21 +260,41 @@ impl Scene {
                     ),
                 ));
             }
+            if !(c.fix_x || c.fix_y) {
+                return Err(fail(
+                    "constraints",
+                    "a constraint region fixes nothing: set fix_x, fix_y or both to true".into(),
+                ));
+            }
         }
         Ok(())
     }
 }
 
-/// The first body whose contact radius is given but not positive: its name
-/// and the message.
+/// The first body whose contact radius is given but not positive, or
+/// wider than the grid (a disk that reaches every point of every body is a
+/// unit typed wrong): its name and the message.
 fn contact_radius_error(scene: &Scene) -> Option<(String, String)> {
+    let (w, h) = (
+        scene.grid.cells.0 as Real * scene.grid.cell_size,
+        scene.grid.cells.1 as Real * scene.grid.cell_size,
+    );
+    let widest = w.max(h);
     scene.bodies.iter().find_map(|b| {
         let r = b.contact_radius?;
-        rules::positive(r).err().map(|e| {
-            (
-                b.name.clone(),
-                format!("body '{}': contact_radius: {e}", b.name),
-            )
-        })
+        let problem = match rules::positive(r) {
+            Err(e) => e.to_string(),
+            Ok(r) if r > widest => format!(
+                "{} m is wider than the grid ({} m by {} m); a point's contact disk is about half its spacing",
+                rules::shown(r),
+                rules::shown(w),
+                rules::shown(h)
+            ),
+            Ok(_) => return None,
+        };
+        Some((
+            b.name.clone(),
+            format!("body '{}': contact_radius: {problem}", b.name),
+        ))
     })
 }

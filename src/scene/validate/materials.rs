@@ -20,7 +20,7 @@ impl Scene {
                     format!("material name '{}' is used twice", m.name),
                 ));
             }
-            rules::positive(m.density).map_err(|e| {
+            rules::density(m.density).map_err(|e| {
                 v.invalid(
                     &[at[0], at[1], "density"],
                     format!("material '{}': density: {e}", m.name),

@@ -42,6 +42,28 @@ impl Locator<'_> {
     }
 }
 
+/// Longest name an entry may have (bytes): a file name's limit, as names
+/// name output files and are echoed in messages.
+const NAME_MAX_BYTES: usize = 255;
+
+/// What is wrong with an entry's name, without echoing it: empty, too
+/// long, or holding control characters (which would garble messages and
+/// terminals).
+fn name_problem(name: &str) -> Option<String> {
+    if name.trim().is_empty() {
+        Some("has an empty name".into())
+    } else if name.len() > NAME_MAX_BYTES {
+        Some(format!(
+            "has a name {} bytes long; names are at most {NAME_MAX_BYTES}",
+            name.len()
+        ))
+    } else if name.chars().any(char::is_control) {
+        Some("has a name holding control characters (a newline, a tab, an escape); names are printable text".into())
+    } else {
+        None
+    }
+}
+
 /// A name as the quoted string that anchors its entry.
 fn quoted(name: &str) -> String {
     format!("\"{name}\"")
@@ -118,10 +140,20 @@ impl Scene {
             ),
         ];
         for (section, names) in sections {
-            if let Some(k) = names.iter().position(|name| name.trim().is_empty()) {
+            for (k, name) in names.iter().enumerate() {
+                if let Some(problem) = name_problem(name) {
+                    return Err(v.invalid(
+                        &nth_name(section, k),
+                        format!("{section}: entry {} {problem}", k + 1),
+                    ));
+                }
+            }
+        }
+        for (k, body) in self.bodies.iter().enumerate() {
+            if let Some(problem) = body.group.as_deref().and_then(name_problem) {
                 return Err(v.invalid(
-                    &nth_name(section, k),
-                    format!("{section}: entry {} has an empty name", k + 1),
+                    &["bodies", &quoted(&body.name), "group"],
+                    format!("bodies: entry {}: the contact group {problem}", k + 1),
                 ));
             }
         }

@@ -15,6 +15,12 @@ impl Scene {
         body_names: &BTreeSet<&'s str>,
         block_names: &BTreeSet<&'s str>,
     ) -> Result<(), SceneError> {
+        if self.output.fronts && self.bodies.is_empty() {
+            return Err(v.field(
+                &["output", "fronts"],
+                "the scene has no body whose front to follow; leave fronts out",
+            ));
+        }
         let mut probe_names = BTreeSet::new();
         let mut probe_files = BTreeMap::new();
         for (k, p) in self.probes.iter().enumerate() {

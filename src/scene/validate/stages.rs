@@ -60,6 +60,19 @@ impl Scene {
             {
                 return Err(fail("gravity", format!("gravity must be finite, got {g}")));
             }
+            if let Some(g) = stage.gravity
+                && g.length() > super::settings::MAX_GRAVITY
+            {
+                return Err(fail(
+                    "gravity",
+                    format!(
+                        "gravity must be at most {:e} m/s², got ({}, {})",
+                        super::settings::MAX_GRAVITY,
+                        rules::shown(g.x),
+                        rules::shown(g.y)
+                    ),
+                ));
+            }
             let block = |name: &str, field: &str| {
                 self.blocks.iter().find(|b| b.name == name).ok_or_else(|| {
                     fail(
@@ -69,8 +82,14 @@ impl Scene {
                 })
             };
             // Removals come first, then additions (systems/stages.rs).
-            for name in &stage.remove_blocks {
+            for (k, name) in stage.remove_blocks.iter().enumerate() {
                 block(name, "remove_blocks")?;
+                if stage.remove_blocks[..k].contains(name) {
+                    return Err(fail(
+                        "remove_blocks",
+                        format!("block '{name}' is listed twice; list it once"),
+                    ));
+                }
                 if !present.remove(name.as_str()) {
                     return Err(fail(
                         "remove_blocks",
