@@ -238,8 +238,8 @@ impl TryFrom<TimeInput> for TimeSpec {
 pub struct MaterialSpec {
     /// Name, referred to by bodies.
     pub name: String,
-    /// Mass density ρ (kg/m³), from [`rules::MIN_DENSITY`] to
-    /// [`rules::MAX_DENSITY`].
+    /// Mass density ρ (kg/m³), from 0.1 (below air's) to 1e9 (the densest
+    /// metal, mass-scaled).
     #[serde(deserialize_with = "rules::de_density")]
     pub density: Real,
     /// Constitutive model, e.g. `LinearElastic((youngs_modulus: 1e5, poisson_ratio: 0.0))`.
