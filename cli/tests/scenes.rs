@@ -463,12 +463,7 @@ fn a_frame_at_every_step_of_a_long_run_warns_with_the_room_it_takes() {
         .iter()
         .map(|(entity, _)| sim.points(*entity).map_or(0, |p| p.len()))
         .sum();
-    let warnings = sim
-        .warnings()
-        .iter()
-        .map(|w| w.message.as_str())
-        .collect::<Vec<_>>()
-        .join("\n");
+    let warnings = common::warning_text(sim.warnings());
     assert!(
         warnings.contains(&format!(
             "output: the run writes up to 10001 VTK frames (one every 1 steps), about {:.1} GB for its {points} points",
@@ -487,12 +482,7 @@ fn output_intervals_off_the_time_step_warn_with_the_steps_taken() {
     scene.output.frame_interval = Some(2.5e-4);
     scene.output.probe_interval = Some(1.4e-4);
     let sim = Simulation::from_scene(&scene).unwrap();
-    let warnings = sim
-        .warnings()
-        .iter()
-        .map(|w| w.message.as_str())
-        .collect::<Vec<_>>()
-        .join("\n");
+    let warnings = common::warning_text(sim.warnings());
     assert!(
         warnings.contains("output.frame_interval = 2.5e-4 s is not a multiple of time.dt = 1e-4 s: frames are written every 3 step(s), 3e-4 s"),
         "{warnings}"
@@ -564,12 +554,7 @@ fn a_probe_far_from_its_body_warns() {
     let mut scene = common::load_scene("wave_1d.ron");
     scene.probes[0].at = DVec2::new(0.5, 0.5);
     let sim = Simulation::from_scene(&scene).unwrap();
-    let warnings = sim
-        .warnings()
-        .iter()
-        .map(|w| w.message.as_str())
-        .collect::<Vec<_>>()
-        .join("\n");
+    let warnings = common::warning_text(sim.warnings());
     assert!(
         warnings.contains("probe 'midpoint' at [0.5, 0.5] records the nearest point of body 'bar'"),
         "{warnings}"
@@ -617,12 +602,7 @@ fn a_stage_duration_off_the_time_step_warns_with_the_steps_taken() {
     scene.stages[0].end = mpdem::scene::StageEnd::Duration(3.2e-4);
     scene.stages[1].end = mpdem::scene::StageEnd::Duration(3e-4);
     let mut sim = Simulation::from_scene(&scene).unwrap();
-    let warnings = sim
-        .warnings()
-        .iter()
-        .map(|w| w.message.as_str())
-        .collect::<Vec<_>>()
-        .join("\n");
+    let warnings = common::warning_text(sim.warnings());
     assert!(
         warnings.contains("stage 'geostatic': Duration(3.2e-4) is not a multiple of time.dt = 2e-4 s: the stage takes 2 step(s), 4e-4 s"),
         "{warnings}"
@@ -734,12 +714,7 @@ fn a_granular_body_under_the_affine_transfer_with_pure_flip_warns() {
     assert!(sim.warnings().is_empty(), "{:?}", sim.warnings());
     scene.settings.granular_relaxation = None;
     let sim = Simulation::from_scene(&scene).unwrap();
-    let warnings = sim
-        .warnings()
-        .iter()
-        .map(|w| w.message.as_str())
-        .collect::<Vec<_>>()
-        .join("\n");
+    let warnings = common::warning_text(sim.warnings());
     assert!(
         warnings.contains("settings.affine_transfer under pure FLIP")
             && warnings.contains("body 'column'"),

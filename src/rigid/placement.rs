@@ -1,12 +1,15 @@
 //! The checks of a block's placement against the bodies, made when it
 //! enters the world (at the start, or when a stage adds it).
 
-use crate::components::{BlockTemplate, BodyName, MaterialPoints};
+use crate::components::{
+    BlockId, BlockTemplate, BodyName, MaterialPoints, Pose, RigidMotion, RigidShape,
+};
 use crate::contact::disk_shape_contact;
 use crate::math::Real;
 use crate::resources::{Geometry, Penetration};
 use crate::warning::{Warning, WarningKind};
 use bevy_ecs::prelude::*;
+use parry2d_f64::query::contact;
 
 /// Overlap between a block and a body's disks where the block is placed
 /// above which a warning is given: a tenth of the disk radius, more than
@@ -25,9 +28,15 @@ pub struct PlacementChecks {
     pub geometry: Geometry,
 }
 
+/// Overlap of two blocks where one is placed, beyond which a warning is
+/// given (m): far above the round-off of blocks placed exactly touching,
+/// far below any overlap a user means.
+const BLOCK_OVERLAP_WARNING: Real = 1e-9;
+
 /// The warnings about placing `template` among `bodies` (entities in
-/// scene order): a body's disks overlapping it, and a time step above
-/// the stability limit of its springs on a body's lightest point.
+/// scene order) and the blocks already in `world`: a body's disks or
+/// another block overlapping it, and a time step above the stability
+/// limit of its springs on a body's lightest point.
 pub fn placement_warnings(
     template: &BlockTemplate,
     world: &World,
@@ -35,7 +44,7 @@ pub fn placement_warnings(
     checks: PlacementChecks,
 ) -> Vec<Warning> {
     let name = &template.id.name;
-    let mut warnings = Vec::new();
+    let mut warnings = block_overlap_warnings(template, world);
     for &body in bodies {
         let law = *template.law.with_body(body);
         let Some(points) = world.get::<MaterialPoints>(body) else {
@@ -65,6 +74,49 @@ pub fn placement_warnings(
         }
     }
     warnings
+}
+
+/// A warning for each block in `world` that `template` overlaps where it
+/// is placed, in scene order, when either is dynamic: their contact pushes
+/// them apart at once, and throws the dynamic one out. (Fixed and
+/// kinematic blocks may overlap: a container of two walls, say.)
+fn block_overlap_warnings(template: &BlockTemplate, world: &World) -> Vec<Warning> {
+    let Some(mut blocks) = world.try_query::<(&BlockId, &RigidShape, &Pose, &RigidMotion)>() else {
+        return Vec::new();
+    };
+    let dynamic = |motion: &RigidMotion| *motion == RigidMotion::Dynamic;
+    let placed = template.pose.to_parry();
+    let mut overlaps: Vec<(u32, String, Real)> = blocks
+        .iter(world)
+        .filter(|(id, .., motion)| {
+            id.index != template.id.index && (dynamic(motion) || dynamic(&template.motion))
+        })
+        .filter_map(|(id, shape, pose, _)| {
+            let found = contact(
+                &placed,
+                &*template.shape.0,
+                &pose.to_parry(),
+                &*shape.0,
+                0.0,
+            );
+            let depth = -found.ok()??.dist;
+            (depth > BLOCK_OVERLAP_WARNING).then(|| (id.index, id.name.clone(), depth))
+        })
+        .collect();
+    overlaps.sort_unstable_by_key(|(index, ..)| *index);
+    overlaps
+        .into_iter()
+        .map(|(_, other, depth)| {
+            Warning::new(
+                WarningKind::Layout,
+                format!("blocks[\"{}\"].position", template.id.name),
+                format!(
+                    "block '{}' overlaps block '{other}' by {depth:.3e} m where it is placed: their contact pushes them apart at once (a dynamic block is thrown out); move it apart by at least that",
+                    template.id.name
+                ),
+            )
+        })
+        .collect()
 }
 
 /// A warning with the deepest overlap of the body's disks into the

@@ -97,6 +97,16 @@ pub fn probe_samples(sim: &Simulation, name: &str) -> Vec<mpdem::resources::Prob
     probes.series(index).copied().collect()
 }
 
+/// The messages of `warnings`, one per line, for a test that looks for
+/// words in them.
+pub fn warning_text(warnings: &[Warning]) -> String {
+    warnings
+        .iter()
+        .map(|w| w.message.as_str())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 /// Runs `f` on a rayon pool of `threads` workers.
 pub fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
     rayon::ThreadPoolBuilder::new()

@@ -149,12 +149,7 @@ fn bad_blocks_are_refused_and_risky_ones_warned() {
     scene.blocks[0].contact.normal_stiffness = 1e11;
     scene.blocks[0].position.y += 0.004;
     let sim = Simulation::from_scene(&scene).unwrap();
-    let warnings = sim
-        .warnings()
-        .iter()
-        .map(|w| w.message.as_str())
-        .collect::<Vec<_>>()
-        .join("\n");
+    let warnings = common::warning_text(sim.warnings());
     assert!(warnings.contains("contact stability limit"), "{warnings}");
     assert!(
         warnings.contains("block 'ground' overlaps body 'block' by 4"),
@@ -167,12 +162,7 @@ fn bad_blocks_are_refused_and_risky_ones_warned() {
     scene.blocks[0].contact.normal_stiffness = 1e18;
     scene.blocks[1].contact.normal_stiffness = 1e18;
     let sim = Simulation::from_scene(&scene).unwrap();
-    let warnings = sim
-        .warnings()
-        .iter()
-        .map(|w| w.message.as_str())
-        .collect::<Vec<_>>()
-        .join("\n");
+    let warnings = common::warning_text(sim.warnings());
     assert!(warnings.contains("sub-steps per step"), "{warnings}");
     let quiet = Simulation::from_scene(&common::load_scene("rigid_drop.ron")).unwrap();
     assert!(quiet.warnings().is_empty(), "{:?}", quiet.warnings());
