@@ -42,6 +42,12 @@ pub enum RuleError {
         shown(*.0)
     )]
     Density(Real),
+    /// An elastic modulus beyond any material's.
+    #[error("expected a modulus > 0 and at most {MAX_MODULUS:e} Pa, got {} Pa", shown(*.0))]
+    Modulus(Real),
+    /// A contact stiffness beyond any use.
+    #[error("expected a stiffness > 0 and at most {MAX_STIFFNESS:e}, got {}", shown(*.0))]
+    Stiffness(Real),
     /// A name that cannot be a file name, and why.
     #[error("{0}")]
     FileName(String),
@@ -96,6 +102,35 @@ pub fn density(value: Real) -> Result<Real, RuleError> {
         Ok(value)
     } else {
         Err(RuleError::Density(value))
+    }
+}
+
+/// Stiffest elastic modulus a material may have (Pa): ten times
+/// diamond's Young's modulus (1.2e12 Pa); beyond it a value is a unit typed
+/// wrong, and the time step it needs is below any run's.
+pub const MAX_MODULUS: Real = 1e13;
+
+/// An elastic modulus: positive, at most [`MAX_MODULUS`].
+pub fn modulus(value: Real) -> Result<Real, RuleError> {
+    if value > 0.0 && value <= MAX_MODULUS {
+        Ok(value)
+    } else {
+        Err(RuleError::Modulus(value))
+    }
+}
+
+/// Stiffest contact spring a law may have (N/m per metre, or N/m³ by
+/// area): 1e8 times the stiffest the verification cases use (1e10), so
+/// that the sub-step warning of a stiff law can still be met; beyond it the
+/// contact's stable step is below any run's.
+pub const MAX_STIFFNESS: Real = 1e18;
+
+/// A contact stiffness: positive, at most [`MAX_STIFFNESS`].
+pub fn stiffness(value: Real) -> Result<Real, RuleError> {
+    if value > 0.0 && value <= MAX_STIFFNESS {
+        Ok(value)
+    } else {
+        Err(RuleError::Stiffness(value))
     }
 }
 
@@ -265,6 +300,11 @@ fn checked<'de, D: Deserializer<'de>>(
 /// `deserialize_with` form of [`density`].
 pub fn de_density<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
     checked(d, density)
+}
+
+/// `deserialize_with` form of [`modulus`].
+pub fn de_modulus<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
+    checked(d, modulus)
 }
 
 /// `deserialize_with` form of [`positive`].

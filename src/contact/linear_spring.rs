@@ -44,6 +44,13 @@ impl ContactLaw {
         };
         positive("normal_stiffness", self.normal_stiffness)?;
         positive("tangential_stiffness", self.tangential_stiffness)?;
+        for (name, k) in [
+            ("normal_stiffness", self.normal_stiffness),
+            ("tangential_stiffness", self.tangential_stiffness),
+        ] {
+            crate::rules::stiffness(k)
+                .map_err(|e| ParameterError::Inconsistent(format!("{name}: {e}")))?;
+        }
         non_negative("friction", self.friction)?;
         non_negative("normal_damping", self.normal_damping)
     }

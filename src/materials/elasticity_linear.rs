@@ -4,7 +4,7 @@
 
 use super::{ConstitutiveModel, PointStep, jaumann_rotation};
 use crate::math::{DMat2, Real, SymTensor};
-use crate::rules::{ParameterError, poisson_ratio, positive};
+use crate::rules::{ParameterError, poisson_ratio};
 use serde::{Deserialize, Serialize};
 
 /// Hooke's law in rate form. Fields are the scene's names.
@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 #[serde(deny_unknown_fields)]
 pub struct LinearElastic {
     /// Young's modulus E (Pa), > 0.
-    #[serde(deserialize_with = "crate::rules::de_positive")]
+    #[serde(deserialize_with = "crate::rules::de_modulus")]
     pub youngs_modulus: Real,
     /// Poisson's ratio ν, in (−1, 0.5).
     #[serde(deserialize_with = "crate::rules::de_poisson_ratio")]
@@ -22,7 +22,7 @@ pub struct LinearElastic {
 impl LinearElastic {
     /// Checks the parameter ranges.
     pub fn check(&self) -> Result<(), ParameterError> {
-        positive(self.youngs_modulus).map_err(|e| e.at("youngs_modulus"))?;
+        crate::rules::modulus(self.youngs_modulus).map_err(|e| e.at("youngs_modulus"))?;
         poisson_ratio(self.poisson_ratio).map_err(|e| e.at("poisson_ratio"))?;
         Ok(())
     }

@@ -16,7 +16,7 @@
 
 use super::{ConstitutiveModel, LinearElastic, PointStep};
 use crate::math::{DMat2, Real, SymTensor};
-use crate::rules::{ParameterError, poisson_ratio, positive};
+use crate::rules::{ParameterError, poisson_ratio};
 use serde::{Deserialize, Serialize};
 
 /// Parameters of the model (scene `NeoHookean((...))`). The Lamé constants
@@ -25,7 +25,7 @@ use serde::{Deserialize, Serialize};
 #[serde(deny_unknown_fields)]
 pub struct NeoHookean {
     /// Young's modulus E (Pa) at small strain, > 0.
-    #[serde(deserialize_with = "crate::rules::de_positive")]
+    #[serde(deserialize_with = "crate::rules::de_modulus")]
     pub youngs_modulus: Real,
     /// Poisson's ratio ν at small strain, in (−1, 0.5).
     #[serde(deserialize_with = "crate::rules::de_poisson_ratio")]
@@ -35,7 +35,7 @@ pub struct NeoHookean {
 impl NeoHookean {
     /// Checks the parameter ranges; the message names the field.
     pub fn check(&self) -> Result<(), ParameterError> {
-        positive(self.youngs_modulus).map_err(|e| e.at("youngs_modulus"))?;
+        crate::rules::modulus(self.youngs_modulus).map_err(|e| e.at("youngs_modulus"))?;
         poisson_ratio(self.poisson_ratio).map_err(|e| e.at("poisson_ratio"))?;
         Ok(())
     }

@@ -25,7 +25,7 @@ pub struct NewtonianFluid {
     /// Bulk modulus K of the equation of state (Pa), > 0. Weakly compressible
     /// models choose it well below water's 2.2 GPa (the paper's dam break
     /// uses 3e4 Pa) so that the time step stays practical.
-    #[serde(deserialize_with = "crate::rules::de_positive")]
+    #[serde(deserialize_with = "crate::rules::de_modulus")]
     pub bulk_modulus: Real,
     /// Exponent γ of the equation of state, > 0. Default 7, Monaghan's value
     /// for water (the paper's choice).
@@ -47,7 +47,7 @@ fn default_gamma() -> Real {
 impl NewtonianFluid {
     /// Checks the parameter ranges; the message names the field.
     pub fn check(&self) -> Result<(), ParameterError> {
-        positive(self.bulk_modulus).map_err(|e| e.at("bulk_modulus"))?;
+        crate::rules::modulus(self.bulk_modulus).map_err(|e| e.at("bulk_modulus"))?;
         positive(self.gamma).map_err(|e| e.at("gamma"))?;
         non_negative(self.viscosity).map_err(|e| e.at("viscosity"))?;
         Ok(())

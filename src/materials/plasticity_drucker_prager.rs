@@ -13,7 +13,7 @@
 use super::elasticity_linear::PreparedElastic;
 use super::{ElasticPlastic, LinearElastic, PointStep, looser_than};
 use crate::math::{Real, SymTensor};
-use crate::rules::{ParameterError, non_negative, poisson_ratio, positive};
+use crate::rules::{ParameterError, non_negative, poisson_ratio};
 use serde::{Deserialize, Serialize};
 
 /// Parameters of the model (scene `DruckerPrager((...))`).
@@ -64,7 +64,7 @@ fn xi(angle: Real) -> Real {
 impl DruckerPrager {
     /// Checks the parameter ranges; the message names the field.
     pub fn check(&self) -> Result<(), ParameterError> {
-        positive(self.youngs_modulus).map_err(|e| e.at("youngs_modulus"))?;
+        crate::rules::modulus(self.youngs_modulus).map_err(|e| e.at("youngs_modulus"))?;
         poisson_ratio(self.poisson_ratio).map_err(|e| e.at("poisson_ratio"))?;
         if !(0.0..90.0).contains(&self.friction_angle) {
             return Err(ParameterError::Inconsistent(format!(

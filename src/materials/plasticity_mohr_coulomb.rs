@@ -52,7 +52,7 @@
 use super::elasticity_linear::PreparedElastic;
 use super::{ElasticPlastic, LinearElastic, PointStep, looser_than};
 use crate::math::{Real, SymTensor};
-use crate::rules::{ParameterError, RuleError, non_negative, poisson_ratio, positive};
+use crate::rules::{ParameterError, RuleError, non_negative, poisson_ratio};
 use serde::{Deserialize, Deserializer, Serialize, de::Error};
 use std::f64::consts::{FRAC_PI_3, PI};
 
@@ -61,7 +61,7 @@ use std::f64::consts::{FRAC_PI_3, PI};
 #[serde(deny_unknown_fields)]
 pub struct MohrCoulomb {
     /// Young's modulus E (Pa), > 0.
-    #[serde(deserialize_with = "crate::rules::de_positive")]
+    #[serde(deserialize_with = "crate::rules::de_modulus")]
     pub youngs_modulus: Real,
     /// Poisson's ratio ν in (−1, 0.5).
     #[serde(deserialize_with = "crate::rules::de_poisson_ratio")]
@@ -168,7 +168,7 @@ type Principal = [Real; 3];
 impl MohrCoulomb {
     /// Checks the parameter ranges; the message names the field.
     pub fn check(&self) -> Result<(), ParameterError> {
-        positive(self.youngs_modulus).map_err(|e| e.at("youngs_modulus"))?;
+        crate::rules::modulus(self.youngs_modulus).map_err(|e| e.at("youngs_modulus"))?;
         poisson_ratio(self.poisson_ratio).map_err(|e| e.at("poisson_ratio"))?;
         angle(self.friction_angle).map_err(|e| e.at("friction_angle"))?;
         if !(0.0..=self.friction_angle).contains(&self.dilation_angle) {

@@ -1,6 +1,6 @@
 //! The rigid blocks and their contact settings.
 
-use super::{Locator, nth_name, quoted};
+use super::{Locator, nth_name};
 use crate::components::RigidVelocity;
 use crate::contact::ForceApplication;
 use crate::rules;
@@ -16,13 +16,7 @@ impl Scene {
     pub(super) fn check_blocks<'s>(&'s self, v: &Locator) -> Result<BTreeSet<&'s str>, SceneError> {
         let mut block_names = BTreeSet::new();
         for (k, block) in self.blocks.iter().enumerate() {
-            let name = quoted(&block.name);
-            let fail = |field: &str, detail: String| {
-                v.invalid(
-                    &["blocks", &name, field],
-                    format!("block '{}': {detail}", block.name),
-                )
-            };
+            let fail = v.entry("blocks", "block", &block.name);
             if !block_names.insert(block.name.as_str()) {
                 return Err(v.invalid(
                     &nth_name("blocks", k),

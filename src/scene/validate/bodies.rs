@@ -32,13 +32,7 @@ impl Scene {
         let mut body_names = BTreeSet::new();
         let mut total_points: Real = 0.0;
         for (k, b) in self.bodies.iter().enumerate() {
-            let name = quoted(&b.name);
-            let fail = |field: &str, detail: String| {
-                v.invalid(
-                    &["bodies", &name, field],
-                    format!("body '{}': {detail}", b.name),
-                )
-            };
+            let fail = v.entry("bodies", "body", &b.name);
             if !body_names.insert(b.name.as_str()) {
                 return Err(v.invalid(
                     &nth_name("bodies", k),
@@ -99,13 +93,7 @@ impl Scene {
         let grid = &self.grid;
         let (grid_min, grid_max) = (grid.origin, grid.max());
         let margin = self.settings.shape_function.required_margin_cells() * grid.cell_size;
-        let name = quoted(&b.name);
-        let fail = |field: &str, detail: String| {
-            v.invalid(
-                &["bodies", &name, field],
-                format!("body '{}': {detail}", b.name),
-            )
-        };
+        let fail = v.entry("bodies", "body", &b.name);
         // Estimated from the shape before its points are made.
         let estimate = b
             .shape
@@ -202,13 +190,7 @@ impl Scene {
         b: &BodySpec,
         points: &[ListedPoint],
     ) -> Result<(), SceneError> {
-        let name = quoted(&b.name);
-        let fail = |field: &str, detail: String| {
-            v.invalid(
-                &["bodies", &name, field],
-                format!("body '{}': {detail}", b.name),
-            )
-        };
+        let fail = v.entry("bodies", "body", &b.name);
         if let InitialVelocity::Constant(velocity) = b.velocity
             && !velocity.is_finite()
         {

@@ -21,7 +21,25 @@ struct Locator<'t> {
     source: Option<(&'t str, &'t Path)>,
 }
 
-impl Locator<'_> {
+impl<'t> Locator<'t> {
+    /// What makes the errors of the entry of `section` named `name` (its
+    /// path typed once): given a field of the entry and the detail, the
+    /// error at that field whose message starts `{label} '{name}': `.
+    fn entry<'a>(
+        &'a self,
+        section: &'static str,
+        label: &'static str,
+        name: &'a str,
+    ) -> impl Fn(&str, String) -> SceneError + 'a {
+        let anchor = quoted(name);
+        move |field, detail| {
+            self.invalid(
+                &[section, &anchor, field],
+                format!("{label} '{name}': {detail}"),
+            )
+        }
+    }
+
     /// The error `detail` about the field at `path` (a section and its
     /// fields, e.g. `["time", "dt"]`): the message names the field as
     /// `time.dt: {detail}`, and the location is the field's in the text.

@@ -1,6 +1,6 @@
 //! The stages.
 
-use super::{Locator, nth_name, quoted};
+use super::{Locator, nth_name};
 use crate::math::Real;
 use crate::rules;
 use crate::scene::{MotionSpec, Scene, SceneError};
@@ -22,13 +22,7 @@ impl Scene {
             .map(|b| b.name.as_str())
             .collect();
         for (k, stage) in self.stages.iter().enumerate() {
-            let at = quoted(&stage.name);
-            let fail = |field: &str, message: String| {
-                v.invalid(
-                    &["stages", &at, field],
-                    format!("stage '{}': {message}", stage.name),
-                )
-            };
+            let fail = v.entry("stages", "stage", &stage.name);
             if !stage_names.insert(stage.name.as_str()) {
                 return Err(v.invalid(
                     &nth_name("stages", k),
