@@ -87,6 +87,32 @@ pub fn shown(x: Real) -> String {
     }
 }
 
+/// Most characters of a piece of input a message echoes.
+pub const ECHO_CHARACTERS: usize = 80;
+
+/// `text` as a message echoes it: control characters escaped, and cut to
+/// [`ECHO_CHARACTERS`] with its length when longer (a 200 MB line of a
+/// point file is not printed whole).
+pub fn echo(text: &str) -> String {
+    let length = text.chars().count();
+    let mut shown: String = text
+        .chars()
+        .take(ECHO_CHARACTERS)
+        .flat_map(|c| {
+            let escaped: Vec<char> = if c.is_control() {
+                c.escape_default().collect()
+            } else {
+                vec![c]
+            };
+            escaped
+        })
+        .collect();
+    if length > ECHO_CHARACTERS {
+        shown.push_str(&format!("… ({length} characters)"));
+    }
+    shown
+}
+
 /// Lightest density a material or a block may have (kg/m³): below air's
 /// (1.2), below any solid's, liquid's or foam's; a smaller value is a unit
 /// typed wrong, and makes the time step's limits meaningless.
@@ -368,4 +394,23 @@ pub fn de_damping<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
 /// `deserialize_with` form of [`poisson_ratio`].
 pub fn de_poisson_ratio<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
     checked(d, poisson_ratio)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn echoed_input_is_cut_and_escaped_and_numbers_keep_their_digits() {
+        assert_eq!(echo("x,y"), "x,y");
+        assert_eq!(echo("a\u{1b}[31m"), "a\\u{1b}[31m");
+        let long = "1.0, ".repeat(100);
+        assert_eq!(
+            echo(&long),
+            format!("{}… (500 characters)", &long[..ECHO_CHARACTERS])
+        );
+        assert_eq!(shown(1e300), "1e300");
+        assert_eq!(shown(2.5), "2.5");
+        assert_eq!(shown(-1e-7), "-1e-7");
+    }
 }

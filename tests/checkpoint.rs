@@ -248,7 +248,7 @@ fn last_energy_sample(sim: &Simulation) -> Option<Real> {
     samples.last().map(|s| s.time)
 }
 
-/// The pile at the reduced size of tests/pile.rs, driven for 0.1 s, then
+/// The pile at the reduced size of verify/tests/pile.rs, driven for 0.1 s, then
 /// a fourth stage that removes the pile.
 fn reduced_pile() -> Scene {
     let mut scene = common::load_scene("pile_penetration.ron");

@@ -105,7 +105,7 @@ fn a_surcharge_s_work_closes_the_balance() {
         last.strain
     );
     // The balance holds to the scheme's error: within 1% of the work over
-    // the run, as for the column settling under gravity (tests/damping.rs);
+    // the run, as for the column settling under gravity (verify/tests/damping.rs);
     // measured 0.4%; leaving out the loads would miss it by 100%. (Settled
     // by PIC 1.0 instead, the `damped` column takes 0.95% of W more than
     // W − U; with particle damping 0.7 as well, 3%, and the top points
@@ -235,7 +235,7 @@ fn a_dynamic_block_s_loss_is_the_pads_gain() {
     assert!(worst < 1e-5 * start, "loss and gain differ by {worst}");
     // The bodies' own balance with the box's work: within 3% of its
     // energy, measured 1.4% (1.7% for a box that does not turn), as the block on the ground's drop onto its
-    // springs (1.6% of gravity's work, tests/rigid_contact.rs): the contact
+    // springs (1.6% of gravity's work, verify/tests/rigid_contact.rs): the contact
     // springs' time integration.
     assert!(swing < 0.03 * start, "balance swings by {swing}");
 }

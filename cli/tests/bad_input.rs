@@ -1,4 +1,4 @@
-//! The malformed scenes of `tests/bad_input/`, one broken thing each over
+//! The malformed scenes of `cli/tests/bad_input/`, one broken thing each over
 //! every section of the scene format and the point files: `mpdem check`
 //! and `mpdem run` refuse each with status 1, the message its first line
 //! expects (`// expect: ...`) at the file, line and column its second line

@@ -2,7 +2,7 @@
 //! panic: stop signals, a killed run, a damaged checkpoint, closed or full
 //! standard output, runaway input, and progress when standard error is a
 //! log. (A mistaken rerun over a checkpoint, and a run into another scene
-//! file's folder: `tests/cli.rs`.)
+//! file's folder: `cli/tests/cli.rs`.)
 
 mod common;
 

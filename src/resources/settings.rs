@@ -15,7 +15,7 @@ pub enum UpdateScheme {
     /// Update stress first (the paper's Algorithm 1): strain rate from the
     /// nodal velocity mapped from the points at the start of the step.
     /// Default: with the default `PositionUpdate::RemappedVelocity` it keeps
-    /// the energy of undamped DEM contacts (`tests/safe_defaults.rs`).
+    /// the energy of undamped DEM contacts (`verify/tests/safe_defaults.rs`).
     #[default]
     Usf,
     /// Update stress last, with the strain rate from the nodal solve's
@@ -109,7 +109,7 @@ pub struct Settings {
     /// edge takes the velocity of its points' mass centre, up to half a
     /// cell inside the body, so a rotating body strains: at one point per
     /// cell a freely spinning block's spin goes into strain and back and
-    /// the block does not turn (`tests/spin.rs`). C_p starts at zero, so
+    /// the block does not turn (`verify/tests/spin.rs`). C_p starts at zero, so
     /// the first P2G is eq. 8c's. Default `false`, the paper's eq. 8c; not
     /// with XPIC, whose smoothing maps velocities without it, nor with the
     /// `Linear` kernel (points invert in ordinary flows).

@@ -13,6 +13,7 @@
 
 use super::{Scene, SceneError, Shape, SourceLocation};
 use crate::math::{DVec2, Real};
+use crate::rules::echo;
 use std::path::Path;
 
 /// One point of a point list: its position and, when the file has a
@@ -133,13 +134,16 @@ pub enum PointListProblem {
     #[error("the point list is empty; expected a header x,y or x,y,volume")]
     Empty,
     /// A column the list does not know.
-    #[error("unknown column '{0}' in the header; expected x, y and optionally volume")]
+    #[error("unknown column '{}' in the header; expected x, y and optionally volume", echo(.0))]
     UnknownColumn(String),
     /// A column named twice.
-    #[error("the header names column '{0}' twice")]
+    #[error("the header names column '{}' twice", echo(.0))]
     TwiceNamed(String),
     /// No x or no y column.
-    #[error("the header must name the columns x and y (and optionally volume), got '{0}'")]
+    #[error(
+        "the header must name the columns x and y (and optionally volume), got '{}'",
+        echo(.0)
+    )]
     NoPosition(String),
     /// A row with another count of values than the header.
     #[error("expected {expected} values ({columns}) as in the header, got {found}")]
@@ -152,7 +156,7 @@ pub enum PointListProblem {
         found: usize,
     },
     /// A value that is not a finite number.
-    #[error("expected a finite number in column {column}, got '{value}'")]
+    #[error("expected a finite number in column {column}, got '{}'", echo(value))]
     Number {
         /// The column.
         column: String,

@@ -36,6 +36,17 @@ pub enum VelocityFieldError {
         /// What the parser says.
         source: exmex::ExError,
     },
+    /// An expression longer than [`LONGEST_EXPRESSION`]: its cost at every
+    /// point grows with it, and no field a person writes is that long.
+    #[error(
+        "velocity {axis}: an expression of {length} characters; at most {LONGEST_EXPRESSION} (a field of a few terms)"
+    )]
+    TooLong {
+        /// The component, `x` or `y`.
+        axis: &'static str,
+        /// Its length in characters.
+        length: usize,
+    },
     /// An expression names a variable other than x and y.
     #[error(
         "velocity {axis} = \"{text}\": unknown variable '{variable}' (only x and y are allowed)"
@@ -67,9 +78,18 @@ pub enum VelocityFieldError {
     },
 }
 
+/// Longest expression of a velocity field (characters).
+pub const LONGEST_EXPRESSION: usize = 1000;
+
 impl VelocityField {
     /// Parses both expressions; the error names the offending one.
     pub fn parse(x: &str, y: &str) -> Result<Self, VelocityFieldError> {
+        for (axis, text) in [("x", x), ("y", y)] {
+            let length = text.chars().count();
+            if length > LONGEST_EXPRESSION {
+                return Err(VelocityFieldError::TooLong { axis, length });
+            }
+        }
         let compile = |axis: &'static str, text: &str| -> Result<Expression, VelocityFieldError> {
             let expr = Expression::parse(text).map_err(|source| VelocityFieldError::Parse {
                 axis,

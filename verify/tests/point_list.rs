@@ -220,7 +220,7 @@ fn a_listed_body_with_a_coarse_top_carries_the_surcharge_to_its_base() {
         .unwrap_or_else(|e| panic!("{e}"));
     sim.run().unwrap_or_else(|e| panic!("{e}"));
     let base = mpdem_verify::base_stress(sim.points_of("soil").unwrap());
-    // As for the lattice column (tests/stages.rs): the lowest points carry
+    // As for the lattice column (verify/tests/stages.rs): the lowest points carry
     // the stress of the bottom cell's centre, ρ g (H − h/2), plus the
     // 150 kPa surcharge; the geostatic tolerance, 3%.
     let expected = -1620.0 * 9.81 * (4.0 - 0.1) - 150e3;
