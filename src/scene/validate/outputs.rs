@@ -25,6 +25,7 @@ impl Scene {
         let mut probe_files = BTreeMap::new();
         for (k, p) in self.probes.iter().enumerate() {
             let at = ["probes", &quoted(&p.name)];
+            let fail = v.entry("probes", "probe", &p.name);
             if !probe_names.insert(p.name.as_str()) {
                 return Err(v.invalid(
                     &nth_name("probes", k),
@@ -50,18 +51,12 @@ impl Scene {
             rules::fits_in_file_name(&longest)
                 .map_err(|e| v.invalid(&at, format!("probe '{}': {e}", p.name)))?;
             if !p.at.is_finite() {
-                return Err(v.invalid(
-                    &[at[0], at[1], "at"],
-                    format!("probe '{}': location must be finite, got {}", p.name, p.at),
-                ));
+                return Err(fail("at", format!("location must be finite, got {}", p.at)));
             }
             if !body_names.contains(p.body.as_str()) {
-                return Err(v.invalid(
-                    &[at[0], at[1], "body"],
-                    format!(
-                        "probe '{}': unknown body '{}'; expected one of {:?}",
-                        p.name, p.body, body_names
-                    ),
+                return Err(fail(
+                    "body",
+                    format!("unknown body '{}'; expected one of {body_names:?}", p.body),
                 ));
             }
         }
@@ -70,8 +65,7 @@ impl Scene {
             ("probe_interval", self.output.probe_interval),
         ] {
             if let Some(value) = value {
-                rules::positive(value)
-                    .map_err(|e| v.invalid(&["output", field], format!("output.{field}: {e}")))?;
+                rules::positive(value).map_err(|e| v.field(&["output", field], e))?;
             }
         }
 
