@@ -5,6 +5,7 @@ use super::records::refill;
 use super::{MpmPlugin, PluginSetup, placed_bodies};
 use crate::checkpoint::{Checkpointed, TimeRecord};
 use crate::components::bodies_in_scene_order;
+use crate::io::csv::{CsvSeries, field, time};
 use crate::math::Real;
 use crate::resources::{
     BodyContacts, BodyPairContact, BodyPairLaw, BodyPairLog, BodyPairSample, PairSummary,
@@ -13,6 +14,7 @@ use crate::resources::{
 use crate::scene::{Scene, SceneError, body_contact_stability_warnings, body_overlap_warnings};
 use crate::systems::{ContactStep, DiagnosticsStep, compute_body_contacts, record_body_pairs};
 use bevy_ecs::prelude::*;
+use std::io::Write;
 
 /// Body–body contact and its record.
 pub struct BodyContactPlugin;
@@ -127,4 +129,37 @@ fn layout_warnings(
         laws,
     ));
     warnings
+}
+
+/// `body_contacts.csv`: one row per pair of bodies with a law and sample
+/// time, columns time, body_a, body_b, force_x, force_y (on body_a, N/m),
+/// contacts (point pairs), half_width, pressure_half_width and
+/// initial_pressure_half_width (m, see [`crate::resources::PairSummary`]).
+/// `time` is the end of the step whose contacts (found from the positions
+/// at its start) are summed, like the other records.
+impl CsvSeries for BodyPairLog {
+    const HEADER: &'static str = "time,body_a,body_b,force_x,force_y,contacts,half_width,pressure_half_width,initial_pressure_half_width";
+
+    fn rows(&self) -> usize {
+        self.samples.len()
+    }
+
+    fn write_row(&self, k: usize, bodies: &[String], out: &mut dyn Write) -> std::io::Result<()> {
+        let s = &self.samples[k];
+        let name = |i: u32| field(bodies.get(i as usize).map_or("?", String::as_str));
+        let p = &s.summary;
+        writeln!(
+            out,
+            "{},{},{},{:e},{:e},{},{:e},{:e},{:e}",
+            time(s.time),
+            name(s.a),
+            name(s.b),
+            p.force.x,
+            p.force.y,
+            p.contacts,
+            p.half_width,
+            p.pressure_half_width,
+            p.initial_pressure_half_width
+        )
+    }
 }

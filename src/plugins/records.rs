@@ -3,6 +3,7 @@
 use super::{MpmPlugin, PluginSetup};
 use crate::checkpoint::{Checkpointed, TimeRecord};
 use crate::components::{Material, MaterialPoints, bodies_in_scene_order};
+use crate::io::csv::{CsvSeries, field, time};
 use crate::io::figure::{Curve, Figure, FigureContext};
 use crate::math::Real;
 use crate::resources::{Clock, EnergyLog, EnergySample, Probe, ProbeSample, Probes, UpdateScheme};
@@ -11,6 +12,7 @@ use crate::scene::{PROBE_PLOT_PREFIX, Scene, SceneError};
 use crate::systems::{DiagnosticsStep, record_probes_and_energy};
 use crate::warning::{Warning, WarningKind};
 use bevy_ecs::prelude::*;
+use std::io::Write;
 
 /// Probes and energies, sampled every `output.probe_every` steps, at the
 /// start and at the run's last step.
@@ -229,6 +231,71 @@ fn place_probes(scene: &Scene, world: &World, bodies: &[Entity]) -> (Probes, Vec
         });
     }
     (probes, warnings)
+}
+
+/// `probes.csv`: one row per probe and sample time, columns probe, time,
+/// x, y, ux, uy, vx, vy, sxx, syy, sxy, szz (SI, stress tension-positive).
+impl CsvSeries for Probes {
+    const HEADER: &'static str = "probe,time,x,y,ux,uy,vx,vy,sxx,syy,sxy,szz";
+
+    fn rows(&self) -> usize {
+        self.samples.len()
+    }
+
+    fn write_row(&self, k: usize, _: &[String], out: &mut dyn Write) -> std::io::Result<()> {
+        let s = &self.samples[k];
+        let name = field(&self.probes[s.probe].name);
+        let [sxx, syy, sxy, szz] = s.stress.to_array();
+        writeln!(
+            out,
+            "{name},{},{:e},{:e},{:e},{:e},{:e},{:e},{sxx:e},{syy:e},{sxy:e},{szz:e}",
+            time(s.time),
+            s.position.x,
+            s.position.y,
+            s.displacement.x,
+            s.displacement.y,
+            s.velocity.x,
+            s.velocity.y
+        )
+    }
+}
+
+/// `energy.csv`: time, kinetic, strain, contact, total, gravity,
+/// inelastic, loads, blocks, dissipated, damped, balance (J per metre of
+/// thickness). `total` sums the kinetic, strain and contact (the point
+/// contacts' springs) energies, conserved by free elastic bodies;
+/// `balance` adds gravity's potential, what the materials dissipated, minus
+/// the work of the surface loads and of the blocks, what the contacts
+/// dissipated and what damping and the PIC part took (see
+/// [`crate::resources::EnergySample::balance`] for what it still leaves
+/// out).
+impl CsvSeries for EnergyLog {
+    const HEADER: &'static str = "time,kinetic,strain,contact,total,gravity,inelastic,loads,blocks,dissipated,damped,balance";
+
+    fn rows(&self) -> usize {
+        self.samples.len()
+    }
+
+    fn write_row(&self, k: usize, _: &[String], out: &mut dyn Write) -> std::io::Result<()> {
+        let s = &self.samples[k];
+        writeln!(
+            out,
+            "{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+            time(s.time),
+            // + 0.0 writes a minus zero (a work negated) as 0.
+            s.kinetic + 0.0,
+            s.strain + 0.0,
+            s.contact + 0.0,
+            s.total() + 0.0,
+            s.gravity + 0.0,
+            s.inelastic + 0.0,
+            s.loads + 0.0,
+            s.blocks + 0.0,
+            s.dissipated + 0.0,
+            s.damped + 0.0,
+            s.balance() + 0.0
+        )
+    }
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@ use super::records::refill;
 use super::{MpmPlugin, PluginSetup};
 use crate::checkpoint::{Checkpointed, TimeRecord};
 use crate::components::{BlockId, PartReactions, Pose, Reaction, RigidVelocity};
+use crate::io::csv::{CsvSeries, field, time};
 use crate::io::figure::{Curve, Figure, FigureContext};
 use crate::math::Real;
 use crate::resources::{BlockContactHistory, BlockLog, BlockPartSample, BlockSample, UpdateScheme};
@@ -17,6 +18,7 @@ use crate::systems::{
     rebuild_neighbour_lists, record_blocks,
 };
 use bevy_ecs::prelude::*;
+use std::io::Write;
 
 /// Rigid blocks, their contacts and their record.
 pub struct RigidBlocksPlugin;
@@ -126,4 +128,34 @@ fn rotation_figure(blocks: &BlockLog, context: &FigureContext) -> Vec<Figure> {
         y_label: "rotation (degrees, counter-clockwise)".into(),
         curves,
     }]
+}
+
+/// `blocks.csv`: one row per block and sample time, columns block, time,
+/// fx, fy, torque (the points' reaction on the block), x, y, angle (frame
+/// origin, rad), vx, vy, omega (centre of mass).
+impl CsvSeries for BlockLog {
+    const HEADER: &'static str = "block,time,fx,fy,torque,x,y,angle,vx,vy,omega";
+
+    fn rows(&self) -> usize {
+        self.samples.len()
+    }
+
+    fn write_row(&self, k: usize, _: &[String], out: &mut dyn Write) -> std::io::Result<()> {
+        let s = &self.samples[k];
+        let name = field(self.names.get(s.block as usize).map_or("?", String::as_str));
+        writeln!(
+            out,
+            "{name},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+            time(s.time),
+            s.force.x,
+            s.force.y,
+            s.torque,
+            s.origin.x,
+            s.origin.y,
+            s.angle,
+            s.velocity.x,
+            s.velocity.y,
+            s.angular
+        )
+    }
 }

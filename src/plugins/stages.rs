@@ -4,6 +4,7 @@
 use super::{MpmPlugin, PluginSetup};
 use crate::checkpoint::Checkpointed;
 use crate::components::bodies_in_scene_order;
+use crate::io::csv::{CsvSeries, field, time};
 use crate::math::Real;
 use crate::resources::{
     Clock, LoadWork, StageEndReason, StageLog, StagePlan, StageProgress, UpdateScheme,
@@ -14,6 +15,7 @@ use crate::systems::{
     dynamic_blocks_in_scene_order, enter_stage,
 };
 use bevy_ecs::prelude::*;
+use std::io::Write;
 
 /// Stages, surface loads and their record.
 pub struct StagesPlugin;
@@ -115,5 +117,30 @@ fn carry_on_a_stage_cut_short(world: &mut World, progress: &mut StageProgress) {
         progress.finished = false;
     } else {
         world.resource_mut::<Clock>().end = clock.time;
+    }
+}
+
+/// `stages.csv`: one row per finished stage, columns stage (index), name,
+/// start, end (s), steps, reason (`duration`, `condition`, `max_time` or
+/// `scene_end`).
+impl CsvSeries for StageLog {
+    const HEADER: &'static str = "stage,name,start,end,steps,reason";
+
+    fn rows(&self) -> usize {
+        self.records.len()
+    }
+
+    fn write_row(&self, k: usize, _: &[String], out: &mut dyn Write) -> std::io::Result<()> {
+        let r = &self.records[k];
+        writeln!(
+            out,
+            "{},{},{},{},{},{}",
+            r.index,
+            field(&r.name),
+            time(r.start),
+            time(r.end),
+            r.steps,
+            r.reason.label()
+        )
     }
 }
