@@ -605,7 +605,8 @@ impl FrameBuffers {
                 .extend(std::iter::repeat_n(block, outlines.len()));
             self.outlines.extend(outlines);
         }
-        for (entity, _) in sim.bodies() {
+        let bodies: Vec<Entity> = sim.bodies().into_iter().map(|(e, _)| e).collect();
+        for &entity in &bodies {
             let world = sim.world();
             let (Some(index), Some(points)) = (
                 world.get::<BodyIndex>(entity),
@@ -625,20 +626,19 @@ impl FrameBuffers {
                 .iter()
                 .fold(self.marker, |m, h| m.min(2.0 * h.x));
         }
-        self.fill_point_fields(sim);
+        self.fill_point_fields(sim, &bodies);
     }
 
     /// The plugins' point fields, bodies in scene order. A field that
     /// gives a body another count of values than its points is written
     /// as it is, and the frame's check of its columns refuses it.
-    fn fill_point_fields(&mut self, sim: &mut Simulation) {
-        let bodies: Vec<Entity> = sim.bodies().into_iter().map(|(e, _)| e).collect();
+    fn fill_point_fields(&mut self, sim: &Simulation, bodies: &[Entity]) {
         let records = sim.point_fields();
         self.fields.resize_with(records.len(), || ("", Vec::new()));
         for (record, (name, values)) in records.iter().zip(&mut self.fields) {
             *name = record.name;
             values.clear();
-            for &entity in &bodies {
+            for &entity in bodies {
                 (record.fill)(sim.world(), entity, values);
             }
         }
