@@ -285,6 +285,51 @@ impl Simulation {
         &self.registries.point_fields
     }
 
+    /// The series the records hold so far (`energy.csv`, `probes.csv`, …,
+    /// as the scene asks for them), each as its file's name and the text a
+    /// run writes into that file: the header line, then one line per sample.
+    pub fn series_csv(&self) -> Vec<(&'static str, String)> {
+        let bodies: Vec<String> = self.scene.bodies.iter().map(|b| b.name.clone()).collect();
+        self.registries
+            .records
+            .iter()
+            .map(|record| {
+                let series = (record.series)(&self.world);
+                let mut text = format!("{}\n", series.header()).into_bytes();
+                for k in 0..series.rows() {
+                    series
+                        .write_row(k, &bodies, &mut text)
+                        .expect("writing into memory cannot fail");
+                }
+                let text = String::from_utf8(text).expect("the series write UTF-8 text");
+                (record.file, text)
+            })
+            .collect()
+    }
+
+    /// The names of the scalar point fields the plugins add to the frames
+    /// (see [`crate::plugins::PluginSetup::point_field`]).
+    pub fn point_field_names(&self) -> Vec<&'static str> {
+        self.registries
+            .point_fields
+            .iter()
+            .map(|f| f.name)
+            .collect()
+    }
+
+    /// The plugins' scalar point field `name` of `body`, one value per
+    /// point; `None` when no plugin adds a field of that name.
+    pub fn point_field(&self, body: Entity, name: &str) -> Option<Vec<Real>> {
+        let record = self
+            .registries
+            .point_fields
+            .iter()
+            .find(|f| f.name == name)?;
+        let mut values = Vec::new();
+        (record.fill)(&self.world, body, &mut values);
+        Some(values)
+    }
+
     /// The scene the simulation was built from.
     pub fn scene(&self) -> &Scene {
         &self.scene

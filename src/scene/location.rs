@@ -11,6 +11,12 @@ pub struct SourceLocation {
     pub path: Option<PathBuf>,
     /// Line and column, if known.
     pub line_col: Option<(usize, usize)>,
+    /// What the error is about, as searched for in the text: a section of
+    /// the scene, an entry's quoted name, then field names (e.g.
+    /// `["materials", "\"sand\"", "friction_angle"]`); empty when the
+    /// error is about the text itself. It places the error in a scene
+    /// that has no text, such as one built from a dictionary.
+    pub anchors: Vec<String>,
 }
 
 impl SourceLocation {
@@ -19,6 +25,16 @@ impl SourceLocation {
         Self {
             path: Some(path.to_path_buf()),
             line_col: Some((line, col)),
+            anchors: Vec::new(),
+        }
+    }
+
+    /// The place of `anchors` in a scene that has no text (see
+    /// [`Self::anchors`]).
+    pub fn unplaced(anchors: &[&str]) -> Self {
+        Self {
+            anchors: anchors.iter().map(|a| a.to_string()).collect(),
+            ..Self::default()
         }
     }
 
@@ -72,6 +88,7 @@ impl SourceLocation {
         Self {
             path: Some(path.to_path_buf()),
             line_col,
+            anchors: anchors.iter().map(|a| a.to_string()).collect(),
         }
     }
 }

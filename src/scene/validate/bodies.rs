@@ -160,8 +160,7 @@ impl Scene {
             return Err(fail(
                 "shape",
                 format!(
-                    "body '{}' (from {lo} to {hi}) is not inside the grid (from {grid_min} to {grid_max}{}){which}",
-                    b.name,
+                    "it reaches from {lo} to {hi}, so it is not inside the grid (from {grid_min} to {grid_max}{}){which}",
                     if margin > 0.0 {
                         format!(", less a margin of {margin} m that the B-spline needs")
                     } else {
@@ -173,10 +172,7 @@ impl Scene {
         if points.is_empty() {
             return Err(fail(
                 "shape",
-                format!(
-                    "body '{}' has no point: its shape is smaller than the point spacing",
-                    b.name
-                ),
+                "it has no point: its shape is smaller than the point spacing".into(),
             ));
         }
         Ok(points)

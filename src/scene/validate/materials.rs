@@ -1,7 +1,7 @@
 //! The materials: names and parameter ranges.
 
 use super::{Locator, nth_name, quoted};
-use crate::rules;
+use crate::rules::{self, ParameterError};
 use crate::scene::{Scene, SceneError};
 use std::collections::BTreeSet;
 
@@ -26,9 +26,15 @@ impl Scene {
                     format!("material '{}': density: {e}", m.name),
                 )
             })?;
-            m.model
-                .check()
-                .map_err(|e| v.invalid(&at, format!("material '{}': {e}", m.name)))?;
+            m.model.check().map_err(|e| {
+                // A parameter out of range is placed at its field.
+                let field = match &e {
+                    ParameterError::Range { field, .. } => Some(*field),
+                    ParameterError::Inconsistent(_) => None,
+                };
+                let anchors: Vec<&str> = at.into_iter().chain(["model"]).chain(field).collect();
+                v.invalid(&anchors, format!("material '{}': {e}", m.name))
+            })?;
         }
         Ok(material_names)
     }

@@ -53,7 +53,7 @@ impl<'t> Locator<'t> {
         SceneError::Invalid {
             location: match self.source {
                 Some((text, path)) => SourceLocation::find(text, path, anchors),
-                None => SourceLocation::default(),
+                None => SourceLocation::unplaced(anchors),
             },
             message,
         }
