@@ -10,6 +10,7 @@ use mpdem::resources::Clock;
 use numpy::PyReadonlyArray2;
 use pyo3::exceptions::{PyKeyError, PyValueError};
 use pyo3::prelude::*;
+use std::time::{Duration, Instant};
 
 /// A running simulation of a scene. Steps run with the GIL released, on
 /// `threads` worker threads (default: all cores); the results do not
@@ -237,42 +238,73 @@ impl PySimulation {
     }
 }
 
+/// How long the steps run between two looks for Ctrl-C (and warnings).
+const SLICE: Duration = Duration::from_millis(50);
+
+/// Why a run of steps on the pool came back to Python.
+enum Pause {
+    /// `done` said so, or the run ended.
+    Reached,
+    /// The callback is due.
+    Callback,
+    /// A slice of time has passed: a look for Ctrl-C.
+    Slice,
+}
+
 /// Steps until `done` says so or the run ends, calling `callback` between
 /// steps (every `interval` steps, or every step), and stopping when it
-/// returns True; returns whether it ran to `done` or the end. Each step
-/// runs with the GIL released; signals are checked between steps.
+/// returns True; returns whether it ran to `done` or the end. The steps
+/// run on the pool with the GIL released, in slices of up to [`SLICE`]
+/// (one hand-over to the pool per slice, not per step); signals are
+/// checked and warnings issued between slices.
 fn advance(
     slf: &Bound<'_, PySimulation>,
-    done: impl Fn(&Clock) -> bool,
+    done: impl Fn(&Clock) -> bool + Send + Sync,
     callback: Option<Bound<'_, PyAny>>,
     interval: Option<u64>,
 ) -> PyResult<bool> {
     let py = slf.py();
+    let calls_back = callback.is_some();
     loop {
-        {
+        let pause = {
             let mut this = slf.borrow_mut();
-            let clock = this.sim.clock();
-            if done(&clock) || clock.finished() {
-                return Ok(true);
-            }
             let PySimulation {
                 sim, pool, warned, ..
             } = &mut *this;
-            py.detach(|| pool.install(|| sim.step()))
+            let pause = py
+                .detach(|| {
+                    pool.install(|| {
+                        let started = Instant::now();
+                        loop {
+                            let clock = sim.clock();
+                            if done(&clock) || clock.finished() {
+                                return Ok(Pause::Reached);
+                            }
+                            sim.step()?;
+                            let step = sim.clock().step;
+                            if calls_back && interval.is_none_or(|k| step.is_multiple_of(k)) {
+                                return Ok(Pause::Callback);
+                            }
+                            if started.elapsed() >= SLICE {
+                                return Ok(Pause::Slice);
+                            }
+                        }
+                    })
+                })
                 .map_err(|e| from_step_error(py, &e))?;
             for w in &sim.step_warnings()[*warned..] {
                 warn(py, &w.to_string())?;
             }
             *warned = sim.step_warnings().len();
-        }
+            pause
+        };
         py.check_signals()?;
-        if let Some(callback) = &callback {
-            let step = slf.borrow().sim.clock().step;
-            if interval.is_none_or(|k| step.is_multiple_of(k))
-                && callback.call1((slf,))?.is_truthy()?
-            {
+        match (pause, &callback) {
+            (Pause::Reached, _) => return Ok(true),
+            (Pause::Callback, Some(callback)) if callback.call1((slf,))?.is_truthy()? => {
                 return Ok(false);
             }
+            _ => {}
         }
     }
 }

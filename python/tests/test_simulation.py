@@ -121,14 +121,14 @@ def test_steps_release_the_gil():
     thread.start()
     before = counted[0]
     started = time.perf_counter()
-    sim.step(20)
+    while time.perf_counter() - started < 0.2:
+        sim.step(20)
     elapsed = time.perf_counter() - started
     during = counted[0] - before
     done.set()
     thread.join()
     # A thread that holds the GIL for a step starves the counter for the
     # whole step; released, the counter runs alongside (millions a second).
-    assert elapsed > 0.05, "the steps are too short to tell"
     assert during > 20_000 * elapsed
 
 
