@@ -29,6 +29,7 @@ pub(crate) mod scatter;
 pub mod scene;
 pub mod shape_functions;
 mod simulation;
+pub mod threads;
 
 pub mod warning;
 

@@ -78,25 +78,15 @@ pub fn progress_bar(total: u64, quiet: bool, template: &str) -> ProgressBar {
     bar
 }
 
-/// Runs `f` on a rayon pool of `threads` workers (default: rayon's, one
-/// per core or `RAYON_NUM_THREADS`). The step runs on one of the pool's
-/// threads: work handed to the pool from outside it goes through a shared
-/// queue that allocates, work from inside does not.
+/// Runs `f` on a pool of `threads` workers ([`mpdem::threads::worker_pool`]).
+/// The step runs on one of the pool's threads: work handed to the pool
+/// from outside it goes through a shared queue that allocates, work from
+/// inside does not.
 pub fn with_threads(
     threads: Option<usize>,
     f: impl FnOnce() -> Result<(), Failure> + Send,
 ) -> Result<(), Failure> {
-    // The main thread's usual stack, 8 MiB, for the scene parsing and
-    // stepping that now run on a worker (rayon's default is 2 MiB).
-    let mut pool = rayon::ThreadPoolBuilder::new().stack_size(8 << 20);
-    match threads {
-        None => {}
-        Some(0) => return Err(Failure::NoThreads),
-        Some(n) => pool = pool.num_threads(n),
-    }
-    pool.build()
-        .map_err(|source| Failure::Threads { threads, source })?
-        .install(f)
+    mpdem::threads::worker_pool(threads)?.install(f)
 }
 
 #[cfg(test)]

@@ -12,17 +12,9 @@ pub enum Failure {
     /// Writing to standard output failed (not a closed pipe).
     #[error("cannot write to standard output: {0}")]
     Stdout(std::io::Error),
-    /// `--threads 0`.
-    #[error("--threads must be at least 1")]
-    NoThreads,
-    /// The thread pool could not be started.
-    #[error("cannot start {}: {source}", threads.map_or("the threads".to_string(), |n| format!("{n} threads")))]
-    Threads {
-        /// The threads asked for.
-        threads: Option<usize>,
-        /// What failed.
-        source: rayon::ThreadPoolBuildError,
-    },
+    /// `--threads` out of range, or the threads could not be started.
+    #[error("--threads: {0}")]
+    Threads(#[from] mpdem::threads::ThreadsError),
     /// A scene could not be read or built.
     #[error(transparent)]
     Scene(#[from] SceneError),

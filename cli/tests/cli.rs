@@ -565,3 +565,25 @@ fn check_and_run_print_a_warning_alike() {
     );
     assert_eq!(warning_lines(&run), checked);
 }
+
+#[test]
+fn a_thread_count_beyond_the_limit_is_refused_at_once() {
+    let (base, scene) = common::edited_wave_scene("threads", "end: 1.0", "end: 0.05");
+    let out = base.join("out");
+    let started = std::time::Instant::now();
+    for (threads, expected) in [
+        (
+            "100000",
+            "--threads: the number of threads must be at most 1024, got 100000",
+        ),
+        ("0", "--threads: the number of threads must be at least 1"),
+    ] {
+        let result = run_into(&scene, &out, &["--threads", threads]);
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert_eq!(result.status.code(), Some(1), "{stderr}");
+        assert!(stderr.contains(expected), "{stderr}");
+        assert!(!out.exists(), "nothing is written");
+    }
+    // Starting a hundred thousand threads took minutes.
+    assert!(started.elapsed().as_secs() < 20);
+}

@@ -5,7 +5,7 @@ use crate::errors::{ErrorPlace, from_scene_error, scene_error};
 use crate::key_path::{KeyPath, place_of_anchors};
 use mpdem::scene::{Scene, SceneError as EngineSceneError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList, PyTuple};
 use std::path::{Path, PathBuf};
 
 /// The name a scene given as text takes when it names none, and the file
@@ -75,9 +75,10 @@ impl PyScene {
         })
     }
 
-    /// The scene as a dict, laid out as `from_dict` reads it.
+    /// The scene as a dict, laid out as `from_dict` reads it (tuples such
+    /// as points as lists, so that they can be edited in place).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        Ok(pythonize::pythonize(py, &self.scene)?)
+        tuples_as_lists(pythonize::pythonize(py, &self.scene)?)
     }
 
     /// The scene as RON text, which `Scene.from_ron` and the CLI read back
@@ -135,6 +136,25 @@ impl PyScene {
     }
 }
 
+/// `value` with every tuple in it, at any depth, turned into a list.
+fn tuples_as_lists(value: Bound<'_, PyAny>) -> PyResult<Bound<'_, PyAny>> {
+    let py = value.py();
+    if let Ok(tuple) = value.cast::<PyTuple>() {
+        let items: Vec<_> = tuple.iter().map(tuples_as_lists).collect::<PyResult<_>>()?;
+        return Ok(PyList::new(py, items)?.into_any());
+    }
+    if let Ok(list) = value.cast::<PyList>() {
+        for k in 0..list.len() {
+            list.set_item(k, tuples_as_lists(list.get_item(k)?)?)?;
+        }
+    } else if let Ok(dict) = value.cast::<PyDict>() {
+        for (key, item) in dict.iter() {
+            dict.set_item(key, tuples_as_lists(item)?)?;
+        }
+    }
+    Ok(value)
+}
+
 /// Deserializes and validates the dict `d`, reading point lists from
 /// `folder`; errors carry the key path.
 fn scene_from_dict(py: Python<'_>, d: &Bound<'_, PyAny>, folder: &Path) -> PyResult<Scene> {
@@ -150,12 +170,13 @@ fn scene_from_dict(py: Python<'_>, d: &Bound<'_, PyAny>, folder: &Path) -> PyRes
     }
     let mut input = pythonize::Depythonizer::from_object(d);
     let mut scene: Scene = serde_path_to_error::deserialize(&mut input).map_err(|e| {
-        let path = e.path().to_string();
+        // The root is ".", an unknown place "?": no key path to give.
+        let path = Some(e.path().to_string()).filter(|p| p != "." && p != "?");
         scene_error(
             py,
             &e.into_inner().to_string(),
             ErrorPlace {
-                key_path: Some(path),
+                key_path: path,
                 ..ErrorPlace::default()
             },
         )

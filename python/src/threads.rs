@@ -3,15 +3,12 @@
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
-/// A pool of `threads` workers (default: one per core), each with the
-/// main thread's usual 8 MiB stack, as the CLI's.
+/// The engine's pool of `threads` workers (default: one per core), as the
+/// CLI's; a count out of range is a `ValueError`.
 pub fn thread_pool(threads: Option<usize>) -> PyResult<rayon::ThreadPool> {
-    let mut pool = rayon::ThreadPoolBuilder::new().stack_size(8 << 20);
-    match threads {
-        Some(0) => return Err(PyValueError::new_err("threads must be at least 1")),
-        Some(n) => pool = pool.num_threads(n),
-        None => {}
-    }
-    pool.build()
-        .map_err(|e| PyRuntimeError::new_err(format!("cannot start the worker threads: {e}")))
+    use mpdem::threads::{ThreadsError, worker_pool};
+    worker_pool(threads).map_err(|e| match e {
+        ThreadsError::Start { .. } => PyRuntimeError::new_err(e.to_string()),
+        _ => PyValueError::new_err(format!("threads: {e}")),
+    })
 }

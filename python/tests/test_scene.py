@@ -110,6 +110,23 @@ def test_an_edit_is_validated_and_a_refused_one_changes_nothing():
     assert scene.to_dict() == before
 
 
+def test_the_dict_holds_lists_to_edit_in_place():
+    scene = shipped("wave_1d")
+    d = scene.to_dict()
+    assert d["grid"]["cells"] == [200, 2] and isinstance(d["grid"]["origin"], list)
+    scene.set("grid.cells[0]", 240)
+    assert scene.get("grid.cells") == [240, 2]
+
+
+def test_a_dict_error_at_the_root_has_no_key_path():
+    d = shipped("wave_1d").to_dict()
+    del d["grid"]
+    with pytest.raises(mpdem.SceneError) as caught:
+        mpdem.Scene.from_dict(d)
+    assert caught.value.key_path is None
+    assert str(caught.value) == "missing field `grid`"
+
+
 def test_bad_key_paths_are_refused():
     scene = shipped("wave_1d")
     with pytest.raises(KeyError):
@@ -118,5 +135,6 @@ def test_bad_key_paths_are_refused():
         scene.get("materials[granite]")
     with pytest.raises(KeyError):
         scene.get("nothing")
-    with pytest.raises(ValueError):
-        scene.get("a..b")
+    for bad in ["", "a..b", "a[", "a[]", "a]b", "[0]x"]:
+        with pytest.raises(ValueError, match="not a key path"):
+            scene.get(bad)

@@ -145,6 +145,10 @@ def test_a_numerical_failure_raises_with_the_engine_message():
     assert err.message in str(err)
 
 
-def test_threads_must_be_positive():
-    with pytest.raises(ValueError, match="threads"):
+def test_threads_must_be_one_to_the_most():
+    with pytest.raises(ValueError, match="at least 1"):
         mpdem.Simulation(shipped("wave_1d"), threads=0)
+    with pytest.raises(ValueError, match="at most 1024, got 100000"):
+        mpdem.Simulation(shipped("wave_1d"), threads=100_000)
+    with pytest.raises(ValueError, match="at most 1024"):
+        mpdem.run(shipped("wave_1d"), threads=5000)
