@@ -45,6 +45,9 @@ pub enum RuleError {
     /// An elastic modulus beyond any material's.
     #[error("expected a modulus > 0 and at most {MAX_MODULUS:e} Pa, got {} Pa", shown(*.0))]
     Modulus(Real),
+    /// A strength or a load (Pa) that is negative or beyond any material's.
+    #[error("expected a stress ≥ 0 and at most {MAX_MODULUS:e} Pa, got {} Pa", shown(*.0))]
+    Stress(Real),
     /// A contact stiffness beyond any use.
     #[error("expected a stiffness > 0 and at most {MAX_STIFFNESS:e}, got {}", shown(*.0))]
     Stiffness(Real),
@@ -142,6 +145,17 @@ pub fn modulus(value: Real) -> Result<Real, RuleError> {
         Ok(value)
     } else {
         Err(RuleError::Modulus(value))
+    }
+}
+
+/// A strength (cohesion, tension cut-off) or the size of a load (Pa): ≥ 0
+/// and at most [`MAX_MODULUS`], as no material's strength or load exceeds
+/// its stiffness.
+pub fn stress(value: Real) -> Result<Real, RuleError> {
+    if (0.0..=MAX_MODULUS).contains(&value) {
+        Ok(value)
+    } else {
+        Err(RuleError::Stress(value))
     }
 }
 
@@ -351,6 +365,11 @@ pub fn de_some_step_count<'de, D: Deserializer<'de>>(d: D) -> Result<Option<u64>
         0 => Err(D::Error::custom("expected a number of steps ≥ 1, got 0")),
         n => Ok(Some(n)),
     }
+}
+
+/// `deserialize_with` form of [`stress`].
+pub fn de_stress<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
+    checked(d, stress)
 }
 
 /// `deserialize_with` form of [`non_negative`].

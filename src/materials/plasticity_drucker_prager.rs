@@ -13,7 +13,7 @@
 use super::elasticity_linear::PreparedElastic;
 use super::{ElasticPlastic, LinearElastic, PointStep, looser_than};
 use crate::math::{Real, SymTensor};
-use crate::rules::{ParameterError, non_negative, poisson_ratio};
+use crate::rules::{ParameterError, poisson_ratio};
 use serde::{Deserialize, Serialize};
 
 /// Parameters of the model (scene `DruckerPrager((...))`).
@@ -30,10 +30,10 @@ pub struct DruckerPrager {
     /// in plastic shear, the usual choice for sands at critical state.
     #[serde(default)]
     pub dilation_angle: Real,
-    /// Cohesion c (Pa), ≥ 0. Default 0: a cohesionless soil.
+    /// Cohesion c (Pa), 0 to 1e13. Default 0: a cohesionless soil.
     #[serde(default)]
     pub cohesion: Real,
-    /// Tension cut-off σ_t (Pa), ≥ 0; capped at the apex ξ c / η. Default 0:
+    /// Tension cut-off σ_t (Pa), 0 to 1e13; capped at the apex ξ c / η. Default 0:
     /// a cohesionless soil carries no tension.
     #[serde(default)]
     pub tension_cutoff: Real,
@@ -78,8 +78,8 @@ impl DruckerPrager {
                 self.dilation_angle
             )));
         }
-        non_negative(self.cohesion).map_err(|e| e.at("cohesion"))?;
-        non_negative(self.tension_cutoff).map_err(|e| e.at("tension_cutoff"))?;
+        crate::rules::stress(self.cohesion).map_err(|e| e.at("cohesion"))?;
+        crate::rules::stress(self.tension_cutoff).map_err(|e| e.at("tension_cutoff"))?;
         Ok(())
     }
 

@@ -74,13 +74,13 @@ pub struct MohrCoulomb {
     /// plastic shear, the usual choice for sands at critical state.
     #[serde(default, deserialize_with = "de_angle")]
     pub dilation_angle: Real,
-    /// Cohesion c (Pa), ≥ 0. Default 0: a cohesionless soil.
-    #[serde(default, deserialize_with = "crate::rules::de_non_negative")]
+    /// Cohesion c (Pa), 0 to 1e13. Default 0: a cohesionless soil.
+    #[serde(default, deserialize_with = "crate::rules::de_stress")]
     pub cohesion: Real,
-    /// Rankine tension cut-off σ_t (Pa), ≥ 0: the largest principal stress
+    /// Rankine tension cut-off σ_t (Pa), 0 to 1e13: the largest principal stress
     /// allowed; capped at the apex c cot φ. Default 0: a cohesionless soil
     /// carries no tension.
-    #[serde(default, deserialize_with = "crate::rules::de_non_negative")]
+    #[serde(default, deserialize_with = "crate::rules::de_stress")]
     pub tension_cutoff: Real,
     /// Meridional eccentricity ε of the flow potential (eq. 14a), ≥ 0: how
     /// far the hyperbola rounds the potential's apex. Default 0.1, Abaqus's
@@ -177,7 +177,7 @@ impl MohrCoulomb {
                 self.dilation_angle
             )));
         }
-        non_negative(self.cohesion).map_err(|e| e.at("cohesion"))?;
+        crate::rules::stress(self.cohesion).map_err(|e| e.at("cohesion"))?;
         if self.friction_angle == 0.0 && self.cohesion == 0.0 {
             // The pyramid shrinks to the hydrostatic axis, which the return
             // mapping does not handle: it sent every stress to zero and the
@@ -186,7 +186,7 @@ impl MohrCoulomb {
                 "friction_angle 0 with cohesion 0 leaves the material no shear strength, which this model cannot return to; give either a value, or use DruckerPrager (a frictionless, cohesionless solid) or NewtonianFluid".into(),
             ));
         }
-        non_negative(self.tension_cutoff).map_err(|e| e.at("tension_cutoff"))?;
+        crate::rules::stress(self.tension_cutoff).map_err(|e| e.at("tension_cutoff"))?;
         non_negative(self.meridional_eccentricity).map_err(|e| e.at("meridional_eccentricity"))?;
         if let Some(e) = self.deviatoric_eccentricity {
             eccentricity(e).map_err(|e| e.at("deviatoric_eccentricity"))?;

@@ -18,6 +18,10 @@ const MAX_POINTS_PER_CELL: u32 = 8;
 /// counts come from a cell size or `points_per_cell` typed wrong.
 const MAX_POINTS: u128 = 20_000_000;
 
+/// Largest body acceleration (m/s²): 10⁴ times what pushes the Hertz disks
+/// together (10⁸ m/s² on millimetre disks); beyond it a value is a slip.
+const MAX_BODY_ACCELERATION: Real = 1e12;
+
 impl Scene {
     /// The bodies against the grid and the materials; returns their names.
     pub(super) fn check_bodies<'s>(
@@ -40,13 +44,18 @@ impl Scene {
                 ));
             }
             if let Some(load) = b.acceleration
-                && !(load.value.is_finite() && load.ramp_time.is_finite() && load.ramp_time >= 0.0)
+                && !(load.value.is_finite()
+                    && load.value.length() <= MAX_BODY_ACCELERATION
+                    && load.ramp_time.is_finite()
+                    && load.ramp_time >= 0.0)
             {
                 return Err(fail(
                     "acceleration",
                     format!(
-                        "acceleration must be finite with ramp_time ≥ 0, got {} over {} s",
-                        load.value, load.ramp_time
+                        "acceleration must be finite and at most {MAX_BODY_ACCELERATION:e} m/s², with ramp_time ≥ 0, got ({}, {}) over {} s",
+                        rules::shown(load.value.x),
+                        rules::shown(load.value.y),
+                        rules::shown(load.ramp_time)
                     ),
                 ));
             }

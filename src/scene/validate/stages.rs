@@ -155,8 +155,18 @@ impl Scene {
                         ),
                     ));
                 }
-                if !traction.traction.is_finite() {
-                    return Err(fail("tractions", "traction must be finite".into()));
+                if !(traction.traction.is_finite()
+                    && traction.traction.length() <= rules::MAX_MODULUS)
+                {
+                    return Err(fail(
+                        "tractions",
+                        format!(
+                            "a traction must be finite and at most {:e} Pa in size, got ({}, {}) Pa",
+                            rules::MAX_MODULUS,
+                            rules::shown(traction.traction.x),
+                            rules::shown(traction.traction.y)
+                        ),
+                    ));
                 }
             }
         }
