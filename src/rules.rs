@@ -3,7 +3,7 @@
 //! (so scenes built in code are checked by the same rules).
 
 use crate::math::Real;
-use serde::{Deserialize, Deserializer, de::Error};
+use serde::{Deserialize, Deserializer, Serialize, Serializer, de::Error};
 
 /// A value outside the range a scene field allows; the message says what
 /// was expected and what was given.
@@ -356,6 +356,16 @@ pub fn de_positive<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
 /// without `Some` (absent: `None`, with `#[serde(default)]`).
 pub fn de_some_positive<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Real>, D::Error> {
     checked(d, positive).map(Some)
+}
+
+/// `serialize_with` form of an optional field written without `Some`
+/// (read by `de_some_*`): the value itself. Pair it with
+/// `skip_serializing_if = "Option::is_none"`, so that `None` is left out.
+pub fn ser_some<S: Serializer, T: Serialize>(value: &Option<T>, s: S) -> Result<S::Ok, S::Error> {
+    match value {
+        Some(v) => v.serialize(s),
+        None => s.serialize_none(),
+    }
 }
 
 /// A number of steps ≥ 1 for an optional field written without `Some`

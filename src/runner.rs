@@ -284,6 +284,11 @@ impl Runner {
         options: RunOptions,
         plugins: DefaultPlugins,
     ) -> Result<Self, RunError> {
+        let mut options = options;
+        if options.out.as_os_str().is_empty() {
+            // An empty folder name is the current folder, with its checks.
+            options.out = PathBuf::from(".");
+        }
         if let Some(t) = options.checkpoint_every
             && !(t.is_finite() && t > 0.0)
         {

@@ -126,6 +126,7 @@ impl StrainStep<'_> {
             stress,
             strain,
             inelastic_work,
+            plastic_strain,
             volume,
             initial_volume,
             position,
@@ -136,7 +137,11 @@ impl StrainStep<'_> {
         (
             deformation_gradient.par_iter_mut(),
             stress.par_iter_mut(),
-            (strain.par_iter_mut(), inelastic_work.par_iter_mut()),
+            (
+                strain.par_iter_mut(),
+                inelastic_work.par_iter_mut(),
+                plastic_strain.par_iter_mut(),
+            ),
             volume.par_iter_mut(),
             initial_volume.par_iter(),
             stencils.par_iter(),
@@ -144,39 +149,45 @@ impl StrainStep<'_> {
             .into_par_iter()
             .with_min_len(MIN_POINTS_PER_TASK)
             .enumerate()
-            .for_each(|(p, (f, sigma, (eps, dissipated), v, v0, stencil))| {
-                let l = self.velocity_gradient(stencil);
-                *f = (DMat2::IDENTITY + l * self.dt) * *f;
-                let mut d = rate_of_deformation(l);
-                let mut f_zz = 1.0;
-                if axisymmetric {
-                    // ε̇_θθ = v_r / r, and F_θθ = exp(ε_θθ) with ε_θθ the
-                    // integral of that rate (the hoop strain column), so
-                    // the stored energy of a model that reads F_θθ changes
-                    // by the work of σ_θθ ε̇_θθ, as the in-plane F does with
-                    // the in-plane rate. (The points' r / R moves with their
-                    // position update instead: a Neo-Hookean cylinder's
-                    // energy drifted 0.9% against 0.1% for the linear one.)
-                    let r = hoop_radius(position[p], half_size[p]);
-                    d.zz = self.radial_velocity(stencil) / r;
-                    f_zz = (eps.zz + d.zz * self.dt).exp();
-                    *v = f.determinant() * f_zz * v0;
-                } else {
-                    *v = f.determinant() * v0;
-                }
-                let step = PointStep {
-                    d,
-                    w: spin(l),
-                    f: *f,
-                    f_zz,
-                    dt: self.dt,
-                };
-                let dissipation = model.update_stress(sigma, &step);
-                if M::dissipates() {
-                    *dissipated += dissipation * *v;
-                }
-                *eps += d * self.dt;
-            });
+            .for_each(
+                |(p, (f, sigma, (eps, dissipated, plastic), v, v0, stencil))| {
+                    let l = self.velocity_gradient(stencil);
+                    *f = (DMat2::IDENTITY + l * self.dt) * *f;
+                    let mut d = rate_of_deformation(l);
+                    let mut f_zz = 1.0;
+                    if axisymmetric {
+                        // ε̇_θθ = v_r / r, and F_θθ = exp(ε_θθ) with ε_θθ the
+                        // integral of that rate (the hoop strain column), so
+                        // the stored energy of a model that reads F_θθ changes
+                        // by the work of σ_θθ ε̇_θθ, as the in-plane F does with
+                        // the in-plane rate. (The points' r / R moves with their
+                        // position update instead: a Neo-Hookean cylinder's
+                        // energy drifted 0.9% against 0.1% for the linear one.)
+                        let r = hoop_radius(position[p], half_size[p]);
+                        d.zz = self.radial_velocity(stencil) / r;
+                        f_zz = (eps.zz + d.zz * self.dt).exp();
+                        *v = f.determinant() * f_zz * v0;
+                    } else {
+                        *v = f.determinant() * v0;
+                    }
+                    let step = PointStep {
+                        d,
+                        w: spin(l),
+                        f: *f,
+                        f_zz,
+                        dt: self.dt,
+                    };
+                    if M::dissipates() {
+                        let (dissipation, plastic_step) =
+                            model.update_stress_and_plastic_strain(sigma, &step);
+                        *dissipated += dissipation * *v;
+                        *plastic += plastic_step;
+                    } else {
+                        model.update_stress(sigma, &step);
+                    }
+                    *eps += d * self.dt;
+                },
+            );
     }
 
     /// The radial velocity at the point, Σ_i S_ip v_i,r (axisymmetry).

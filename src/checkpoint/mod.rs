@@ -146,7 +146,7 @@ pub enum FormatProblem {
 
 /// The layout of the stored state; a checkpoint of another layout is
 /// refused rather than misread (CHANGELOG.md names what each changed).
-const FORMAT: u32 = 19;
+const FORMAT: u32 = 20;
 
 impl CheckpointError {
     /// The error, naming the checkpoint file `path` where it names a file.

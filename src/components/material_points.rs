@@ -113,6 +113,10 @@ pub struct MaterialPoints {
     /// per radian in axisymmetry): the plastic and viscous work its model
     /// returned each step (per unit volume) times its volume after the step.
     pub inelastic_work: Vec<Real>,
+    /// Equivalent plastic strain since the start, Σ √(2/3 Δe_p : Δe_p)
+    /// over the steps, Δe_p the deviator of a step's plastic strain
+    /// increment (zero for models without plastic strain).
+    pub plastic_strain: Vec<Real>,
     /// External force applied by the user or a system (N/m); not reset by the
     /// engine. Gravity is not included here.
     pub external_force: Vec<DVec2>,
@@ -169,6 +173,7 @@ impl MaterialPoints {
         self.stress.push(p.stress);
         self.strain.push(SymTensor::ZERO);
         self.inelastic_work.push(0.0);
+        self.plastic_strain.push(0.0);
         self.external_force.push(DVec2::ZERO);
         self.half_size.push(p.half_size);
         self.contact_radius.push(p.contact_radius);

@@ -65,6 +65,18 @@ pub trait ConstitutiveModel: Send + Sync {
     /// [`Self::stored_energy_density`].
     fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) -> Real;
 
+    /// As [`Self::update_stress`], returning also the equivalent plastic
+    /// strain the step added, √(2/3 Δe_p : Δe_p) with Δe_p the deviator of
+    /// the plastic strain increment (the points' `plastic_strain`). The
+    /// default, for models without plastic strain, adds none.
+    fn update_stress_and_plastic_strain(
+        &self,
+        stress: &mut SymTensor,
+        step: &PointStep,
+    ) -> (Real, Real) {
+        (self.update_stress(stress, step), 0.0)
+    }
+
     /// Whether the model can dissipate (return other than zero from
     /// [`Self::update_stress`]); the stress update keeps no account for
     /// those that cannot (a store per point and step saved).
@@ -156,20 +168,36 @@ impl<T: ElasticPlastic> ConstitutiveModel for T {
     /// σ^{n+1} : Δε_p with Δε_p = C⁻¹ : (σ_trial − σ^{n+1}) (the strain the
     /// return took out of the elastic part).
     fn update_stress(&self, stress: &mut SymTensor, step: &PointStep) -> Real {
+        self.update_stress_and_plastic_strain(stress, step).0
+    }
+
+    /// The plastic strain increment is the strain the return took out of
+    /// the elastic part, Δε_p = C⁻¹ : (σ_trial − σ^{n+1}), whose deviator
+    /// is dev(σ_trial − σ^{n+1}) / 2G. A disconnected point releases its
+    /// stored energy without plastic strain.
+    fn update_stress_and_plastic_strain(
+        &self,
+        stress: &mut SymTensor,
+        step: &PointStep,
+    ) -> (Real, Real) {
         let elastic = self.elastic();
         if self.disconnected(step) {
             let released = 0.5 * elastic.compliance_product(stress, stress);
             *stress = SymTensor::ZERO;
-            return released;
+            return (released, 0.0);
         }
         let mut trial = *stress;
         self.elastic_trial(&mut trial, step);
         *stress = self.return_map(trial);
         if *stress == trial {
             // Inside the admissible set: no plastic strain.
-            return 0.0;
+            return (0.0, 0.0);
         }
-        elastic.compliance_product(stress, &(trial - *stress))
+        let taken = trial - *stress;
+        let (_, deviator) = taken.mean_and_deviator();
+        let plastic =
+            (2.0 / 3.0 * deviator.contract(&deviator)).sqrt() / (2.0 * elastic.shear_modulus());
+        (elastic.compliance_product(stress, &taken), plastic)
     }
 
     fn p_wave_modulus(&self) -> Real {

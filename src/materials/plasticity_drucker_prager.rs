@@ -311,6 +311,40 @@ mod tests {
     }
 
     #[test]
+    fn plastic_strain_is_the_shear_past_yield() {
+        // Simple shear at constant mean stress (ψ = 0): elastic until
+        // τ = τ_y at γ_y = τ_y / G, then every increment is plastic, and a
+        // simple shear Δγ has the equivalent strain Δγ / √3.
+        let p0 = -1e5;
+        let g = SAND.elastic().shear_modulus();
+        let gamma_y = (xi(30.0) * SAND.cohesion - eta(30.0) * p0) / g;
+        let (dgamma, steps) = (1e-5, 2000);
+        let mut s = SymTensor::new(p0, p0, 0.0, p0);
+        let d = SymTensor::new(0.0, 0.0, 0.5 * dgamma, 0.0);
+        let plastic: Real = (0..steps)
+            .map(|_| {
+                SAND.update_stress_and_plastic_strain(&mut s, &PointStep::rate(d, 0.0, 1.0))
+                    .1
+            })
+            .sum();
+        let expected = (steps as Real * dgamma - gamma_y) / 3.0_f64.sqrt();
+        assert!(expected > 0.0);
+        // The yield step is partly elastic: within one increment.
+        assert!(
+            (plastic - expected).abs() < dgamma / 3.0_f64.sqrt(),
+            "{plastic} vs {expected}"
+        );
+        // The elastic model adds none.
+        let elastic = SAND.elastic();
+        let mut s = SymTensor::ZERO;
+        let step = PointStep::rate(d, 0.0, 1.0);
+        assert_eq!(
+            elastic.update_stress_and_plastic_strain(&mut s, &step).1,
+            0.0
+        );
+    }
+
+    #[test]
     fn dilation_lowers_the_mean_stress_while_shearing() {
         let dilatant = DruckerPrager {
             dilation_angle: 10.0,

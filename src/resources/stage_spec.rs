@@ -77,16 +77,36 @@ impl StageSpec {
 #[serde(deny_unknown_fields)]
 pub struct EdgeChanges {
     /// Edge x = x_min.
-    #[serde(default, deserialize_with = "some_edge")]
+    #[serde(
+        default,
+        deserialize_with = "some_edge",
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "crate::rules::ser_some"
+    )]
     pub left: Option<EdgeCondition>,
     /// Edge x = x_max.
-    #[serde(default, deserialize_with = "some_edge")]
+    #[serde(
+        default,
+        deserialize_with = "some_edge",
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "crate::rules::ser_some"
+    )]
     pub right: Option<EdgeCondition>,
     /// Edge y = y_min.
-    #[serde(default, deserialize_with = "some_edge")]
+    #[serde(
+        default,
+        deserialize_with = "some_edge",
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "crate::rules::ser_some"
+    )]
     pub bottom: Option<EdgeCondition>,
     /// Edge y = y_max.
-    #[serde(default, deserialize_with = "some_edge")]
+    #[serde(
+        default,
+        deserialize_with = "some_edge",
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "crate::rules::ser_some"
+    )]
     pub top: Option<EdgeCondition>,
 }
 

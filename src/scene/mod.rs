@@ -159,7 +159,10 @@ pub struct TimeSpec {
     /// The most steps the run may take (default `None`: [`MAX_STEPS`]). A
     /// scene whose `end / dt` is larger is refused as a likely slip in `dt`
     /// or `end`; name a larger count here to run that long.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "rules::ser_some"
+    )]
     pub max_steps: Option<u64>,
 }
 
