@@ -40,8 +40,11 @@ pub struct Body {
     mass: Py<PyAny>,
     /// Energy the point's material has dissipated since the start in
     /// plastic and viscous work (J per metre), N. The models are perfectly
-    /// plastic and keep no plastic strain; this is their record of yield.
+    /// plastic: this is what their yield has cost.
     inelastic_work: Py<PyAny>,
+    /// Equivalent plastic strain since the start, Σ √(2/3 Δe_p : Δe_p) over
+    /// the steps (zero for models without plastic strain), N.
+    plastic_strain: Py<PyAny>,
     /// External force set on the points (N per metre), N × 2; gravity is
     /// not in it.
     external_force: Py<PyAny>,
@@ -91,7 +94,10 @@ pub struct Block {
 #[pymethods]
 impl Block {
     fn __repr__(&self) -> String {
-        format!("{self:?}")
+        format!(
+            "Block({:?}, origin=({:.6e}, {:.6e}), angle={:.6e})",
+            self.name, self.origin.0, self.origin.1, self.angle
+        )
     }
 }
 
@@ -152,6 +158,7 @@ pub fn body_snapshot(
         initial_volume: scalars(points.initial_volume.clone()),
         mass: scalars(points.mass.clone()),
         inelastic_work: scalars(points.inelastic_work.clone()),
+        plastic_strain: scalars(points.plastic_strain.clone()),
         external_force: vectors(&points.external_force)?,
         contact_force: vectors(&points.contact_force)?,
         point_fields: point_fields.unbind(),

@@ -30,35 +30,58 @@ impl std::fmt::Display for Key {
 pub struct KeyPath(Vec<Key>);
 
 impl KeyPath {
-    /// Parses `a.b[2].c` or `a[name].c`.
+    /// Parses `a.b[2].c`, `a[name].c` or `a["name.with.dots"].c`: in
+    /// brackets, digits are a position and anything else a name (quoted,
+    /// a name in any case).
     pub fn parse(text: &str) -> PyResult<Self> {
         let bad = || {
             PyValueError::new_err(format!(
-                "not a key path: {text:?} (expected e.g. \"materials[0].model.DruckerPrager.friction_angle\")"
+                "not a key path: {text:?} (expected e.g. \"materials[0].model.DruckerPrager.friction_angle\" or \"materials[sand].density\")"
             ))
         };
         let mut keys = Vec::new();
-        for part in text.split('.') {
-            let (field, mut rest) = part.split_at(part.find('[').unwrap_or(part.len()));
-            if field.contains(']') {
-                return Err(bad());
-            }
-            if !field.is_empty() {
+        let mut rest = text;
+        while !rest.is_empty() {
+            if let Some(inner) = rest.strip_prefix('[') {
+                let (key, after) = match inner.chars().next() {
+                    Some(quote @ ('"' | '\'')) => {
+                        let body = &inner[1..];
+                        let end = body.find(quote).ok_or_else(bad)?;
+                        let after = body[end + 1..].strip_prefix(']').ok_or_else(bad)?;
+                        if end == 0 {
+                            return Err(bad());
+                        }
+                        (Key::Named(body[..end].to_owned()), after)
+                    }
+                    _ => {
+                        let end = inner.find(']').ok_or_else(bad)?;
+                        let item = inner[..end].trim();
+                        let key = match item.parse() {
+                            Ok(index) => Key::Index(index),
+                            Err(_) if !item.is_empty() => Key::Named(item.to_owned()),
+                            Err(_) => return Err(bad()),
+                        };
+                        (key, &inner[end + 1..])
+                    }
+                };
+                keys.push(key);
+                rest = after;
+            } else {
+                let end = rest.find(['.', '[']).unwrap_or(rest.len());
+                let field = &rest[..end];
+                if field.is_empty() || field.contains(']') {
+                    return Err(bad());
+                }
                 keys.push(Key::Field(field.to_owned()));
-            } else if rest.is_empty() {
-                return Err(bad());
+                rest = &rest[end..];
             }
-            while let Some(inner) = rest.strip_prefix('[') {
-                let end = inner.find(']').ok_or_else(bad)?;
-                let item = inner[..end].trim().trim_matches(['"', '\'']);
-                keys.push(match item.parse() {
-                    Ok(index) => Key::Index(index),
-                    Err(_) if !item.is_empty() => Key::Named(item.to_owned()),
-                    Err(_) => return Err(bad()),
-                });
-                rest = &inner[end + 1..];
-            }
-            if !rest.is_empty() {
+            // Next: a bracket, the end, or a dot and a field.
+            if let Some(after) = rest.strip_prefix('.') {
+                if after.is_empty() || after.starts_with(['.', '[']) {
+                    return Err(bad());
+                }
+                rest = after;
+            } else if !rest.is_empty() && !rest.starts_with('[') {
                 return Err(bad());
             }
         }

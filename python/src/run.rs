@@ -34,7 +34,10 @@ pub struct RunSummary {
 #[pymethods]
 impl RunSummary {
     fn __repr__(&self) -> String {
-        format!("{self:?}")
+        format!(
+            "RunSummary({:?}, steps={}, time={:.6e}, state_hash={:?}, out={:?})",
+            self.name, self.steps, self.time, self.state_hash, self.out
+        )
     }
 }
 
@@ -60,6 +63,11 @@ pub fn run(
     restart: bool,
     overwrite: bool,
 ) -> PyResult<RunSummary> {
+    if resume && restart {
+        return Err(pyo3::exceptions::PyValueError::new_err(
+            "resume carries the folder's run on and restart starts over: give one",
+        ));
+    }
     let pool = thread_pool(threads)?;
     let file_shown = scene.file.is_some();
     let options = RunOptions {

@@ -1,7 +1,7 @@
 //! `mpdem.Simulation`: a scene's simulation stepped from Python, its
 //! fields read as NumPy arrays between steps.
 
-use crate::errors::{from_scene_error, from_step_error, warn};
+use crate::errors::{NumericalFailure, from_scene_error, from_step_error, warn};
 use crate::fields::{Block, Body, block_states, body_snapshot, set_point_column};
 use crate::scene::PyScene;
 use crate::threads::thread_pool;
@@ -26,6 +26,9 @@ pub struct PySimulation {
     bodies: Vec<(bevy_ecs::entity::Entity, String)>,
     /// Step warnings already issued.
     warned: usize,
+    /// The failure a step raised: the state is the failed step's, which
+    /// no further step may start from.
+    failed: Option<String>,
 }
 
 #[pymethods]
@@ -49,13 +52,14 @@ impl PySimulation {
             pool,
             bodies,
             warned: 0,
+            failed: None,
         })
     }
 
     /// Takes `n` steps (stopping early at the run's end).
     #[pyo3(signature = (n = 1))]
     fn step(slf: &Bound<'_, Self>, n: u64) -> PyResult<()> {
-        let target = slf.borrow().sim.clock().step.saturating_add(n);
+        let target = slf.try_borrow()?.sim.clock().step.saturating_add(n);
         advance(slf, |clock| clock.step >= target, None, None).map(|_| ())
     }
 
@@ -82,7 +86,7 @@ impl PySimulation {
                 "t must be a finite time, got {t}"
             )));
         }
-        let dt = slf.borrow().sim.clock().dt;
+        let dt = slf.try_borrow()?.sim.clock().dt;
         let interval = match every {
             Some(e) if e.is_finite() && e > 0.0 => Some(((e / dt).round() as u64).max(1)),
             Some(e) => {
@@ -167,7 +171,7 @@ impl PySimulation {
         block_states(&mut self.sim)
             .into_iter()
             .find(|b| b.name == name)
-            .ok_or_else(|| PyKeyError::new_err(format!("no block named {name:?} (now)")))
+            .ok_or_else(|| PyKeyError::new_err(format!("no block named {name:?}")))
     }
 
     /// Sets the velocity (m/s) of every point of body `name`: an N × 2 array.
@@ -220,7 +224,7 @@ impl PySimulation {
     fn __repr__(&self) -> String {
         let clock = self.sim.clock();
         format!(
-            "Simulation({:?}, step={}, time={:e})",
+            "Simulation({:?}, step={}, time={:.6e})",
             self.sim.name(),
             clock.step,
             clock.time
@@ -267,9 +271,20 @@ fn advance(
     let calls_back = callback.is_some();
     loop {
         let pause = {
-            let mut this = slf.borrow_mut();
+            // Another thread stepping the simulation holds it: a
+            // RuntimeError, not a panic.
+            let mut this = slf.try_borrow_mut()?;
+            if let Some(failure) = &this.failed {
+                return Err(NumericalFailure::new_err(format!(
+                    "the simulation failed before ({failure}); build a new one to run again"
+                )));
+            }
             let PySimulation {
-                sim, pool, warned, ..
+                sim,
+                pool,
+                warned,
+                failed,
+                ..
             } = &mut *this;
             let pause = py
                 .detach(|| {
@@ -291,7 +306,10 @@ fn advance(
                         }
                     })
                 })
-                .map_err(|e| from_step_error(py, &e))?;
+                .map_err(|e: mpdem::StepError| {
+                    *failed = Some(e.to_string());
+                    from_step_error(py, &e)
+                })?;
             for w in &sim.step_warnings()[*warned..] {
                 warn(py, &w.to_string())?;
             }

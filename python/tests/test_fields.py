@@ -118,8 +118,10 @@ def test_a_velocity_set_from_python_moves_the_body():
     sim.step(100)
     moved = sim.body("square").displacement
     np.testing.assert_allclose(moved[:, 0], 0.5 * sim.time, rtol=1e-9)
-    with pytest.raises(ValueError, match=r"shape \(%d, 2\)" % n):
+    with pytest.raises(ValueError, match=r"shape \(N, 2\)"):
         sim.set_velocity("square", np.zeros((n, 3)))
+    with pytest.raises(ValueError, match=r"shape \(%d, 2\)" % n):
+        sim.set_velocity("square", np.zeros((n + 1, 2)))
     with pytest.raises(ValueError, match="finite"):
         sim.set_velocity("square", np.full((n, 2), np.nan))
     with pytest.raises(KeyError):
@@ -172,3 +174,43 @@ def test_a_series_as_a_pandas_dataframe():
     frame = sim.dataframe("energy")
     assert isinstance(frame, pandas.DataFrame)
     assert list(frame.columns) == list(sim.series("energy").dtype.names)
+
+
+def test_names_stay_strings_in_the_series():
+    scene = shipped("elastic_column", end=0.005)
+    scene.set("probes[0].name", "1")
+    scene.set("probes[1].name", "nan")
+    sim = mpdem.Simulation(scene)
+    sim.run()
+    probes = sim.series("probes")
+    assert set(probes.probe) == {"1", "nan"}
+    pandas = pytest.importorskip("pandas")
+    assert set(sim.dataframe("probes").probe) == {"1", "nan"}
+
+
+def test_points_rows_must_be_real_pairs():
+    sim = mpdem.Simulation(free_square(), threads=1)
+    n = len(sim.body("square"))
+    for bad in [np.zeros(n), [1.0, 0.0], np.zeros((n, 2, 1))]:
+        with pytest.raises(ValueError, match=r"shape \(N, 2\)"):
+            sim.set_velocity("square", bad)
+    with pytest.raises(TypeError, match="real numbers"):
+        sim.set_velocity("square", np.zeros((n, 2), dtype=complex))
+    sim.set_velocity("square", np.zeros((n, 2), dtype=np.float32))
+
+
+def test_plastic_strain_grows_where_a_granular_column_yields():
+    sim = mpdem.Simulation(shipped("granular_collapse_bui", end=0.05))
+    before = sim.body("column").plastic_strain
+    assert before.shape == (len(sim.body("column")),) and (before == 0).all()
+    sim.run()
+    after = sim.body("column")
+    assert after.plastic_strain.min() >= 0.0
+    # The toe region shears past yield; plastic work goes with it.
+    yielded = after.plastic_strain > 0
+    assert yielded.any()
+    assert (after.inelastic_work[yielded] > 0).mean() > 0.9
+    # An elastic body has none.
+    column = mpdem.Simulation(shipped("elastic_column", end=0.01))
+    column.run()
+    assert (column.body("column").plastic_strain == 0).all()

@@ -77,3 +77,16 @@ def test_ctrl_c_stops_a_run_with_its_results_and_checkpoint(tmp_path):
     assert float(energy[-1].split(",")[0]) > 0.0
     # The stop writes a checkpoint, which a resumed run carries on from.
     assert (tmp_path / "o" / "checkpoint.bin").exists()
+
+
+def test_an_empty_folder_name_is_the_current_folder_with_its_checks(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "precious.txt").write_text("keep")
+    with pytest.raises(mpdem.RunError, match="holds files that no mpdem run wrote"):
+        mpdem.run(shipped("wave_1d", end=0.001), out="")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["precious.txt"]
+
+
+def test_resume_and_restart_are_one_or_the_other(tmp_path):
+    with pytest.raises(ValueError, match="give one"):
+        mpdem.run(shipped("wave_1d", end=0.001), out=tmp_path / "o", resume=True, restart=True)

@@ -138,3 +138,26 @@ def test_bad_key_paths_are_refused():
     for bad in ["", "a..b", "a[", "a[]", "a]b", "[0]x"]:
         with pytest.raises(ValueError, match="not a key path"):
             scene.get(bad)
+
+
+def test_entries_are_found_by_any_name():
+    d = shipped("wave_1d").to_dict()
+    first = dict(d["materials"][0], name="1")
+    second = dict(d["materials"][0], name="sand.v2", density=2000.0)
+    d["materials"] = [first, second]
+    d["bodies"][0]["material"] = "1"
+    scene = mpdem.Scene.from_dict(d)
+    # Quoted, a name; bare digits, a position.
+    assert scene.get('materials["sand.v2"].density') == 2000.0
+    assert scene.get('materials["1"].density') == 1000.0
+    assert scene.get("materials[1].density") == 2000.0
+
+
+def test_a_serialized_scene_with_optional_fields_reads_back():
+    scene = shipped("geostatic_column")
+    scene.set("time.max_steps", 1_000_000)
+    scene.set("stages[surcharge].edges", {"left": "Free"})
+    assert scene.get("stages[surcharge].edges") == {"left": "Free"}
+    again = mpdem.Scene.from_ron(scene.to_ron(), folder=SCENES)
+    assert again.to_dict() == scene.to_dict()
+    scene.set("time.end", 21.0)  # edits still validate the whole scene

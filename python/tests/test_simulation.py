@@ -152,3 +152,37 @@ def test_threads_must_be_one_to_the_most():
         mpdem.Simulation(shipped("wave_1d"), threads=100_000)
     with pytest.raises(ValueError, match="at most 1024"):
         mpdem.run(shipped("wave_1d"), threads=5000)
+
+
+def test_a_failed_simulation_refuses_further_steps():
+    scene = shipped("elastic_column")
+    scene.set("time.dt", 2e-2)
+    with pytest.warns(mpdem.SceneWarning):
+        sim = mpdem.Simulation(scene)
+    with pytest.raises(mpdem.NumericalFailure):
+        sim.run()
+    failed_at = sim.step_count
+    with pytest.raises(mpdem.NumericalFailure, match="failed before"):
+        sim.step()
+    assert sim.step_count == failed_at
+
+
+def test_two_threads_stepping_at_once_get_a_runtime_error_not_a_panic():
+    sim = mpdem.Simulation(shipped("two_rings"), threads=1)
+    caught = []
+
+    def step(n):
+        try:
+            sim.step(n)
+        except BaseException as e:  # a PanicException is a BaseException
+            caught.append(e)
+
+    long_run = threading.Thread(target=step, args=(3000,))
+    long_run.start()
+    time.sleep(0.1)
+    for _ in range(20):
+        step(1)
+    long_run.join()
+    # Whichever thread finds the simulation held gets a RuntimeError.
+    assert caught, "the two threads never met"
+    assert all(type(e) is RuntimeError and "borrowed" in str(e) for e in caught), caught

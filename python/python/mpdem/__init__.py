@@ -65,13 +65,14 @@ class Simulation(_NativeSimulation):
 
     def set_velocity(self, name: str, velocity: "npt.ArrayLike") -> None:
         """Sets the velocity (m/s) of every point of body ``name``: an N x 2
-        array, one row per point in the body's order."""
-        super().set_velocity(name, np.ascontiguousarray(velocity, dtype=np.float64))
+        array of real numbers, one row per point in the body's order."""
+        super().set_velocity(name, _point_rows(velocity))
 
     def set_external_force(self, name: str, force: "npt.ArrayLike") -> None:
         """Sets the external force (N per metre) on every point of body
-        ``name``: an N x 2 array, kept until set again (gravity is separate)."""
-        super().set_external_force(name, np.ascontiguousarray(force, dtype=np.float64))
+        ``name``: an N x 2 array of real numbers, kept until set again
+        (gravity is separate)."""
+        super().set_external_force(name, _point_rows(force))
 
     def series(self, name: str) -> np.ndarray:
         """The recorded series ``name`` (see ``series_names``) as a NumPy
@@ -87,20 +88,44 @@ class Simulation(_NativeSimulation):
         """The recorded series ``name`` as a pandas DataFrame (needs pandas)."""
         import pandas
 
-        return pandas.read_csv(io.StringIO(self.series_csv(name)))
+        table = self.series(name)
+        return pandas.DataFrame({column: table[column] for column in table.dtype.names})
+
+
+def _point_rows(values: "npt.ArrayLike") -> np.ndarray:
+    """`values` as a C-ordered float64 array of two columns, or a clear error."""
+    array = np.asarray(values)
+    if np.iscomplexobj(array) or not (
+        np.issubdtype(array.dtype, np.number) or array.dtype == np.bool_
+    ):
+        raise TypeError(f"expected real numbers, got an array of {array.dtype}")
+    if array.ndim != 2 or array.shape[1] != 2:
+        raise ValueError(
+            f"expected an array of shape (N, 2), one row per point, got shape {array.shape}"
+        )
+    return np.ascontiguousarray(array, dtype=np.float64)
+
+
+# The columns of the series that hold names (of probes, bodies, blocks,
+# stages) and reasons: strings, whatever they look like.
+_TEXT_COLUMNS = {"probe", "body", "body_a", "body_b", "block", "name", "reason"}
 
 
 def parse_series(text: str) -> np.ndarray:
     """A series' CSV text (header, then one line per sample) as a NumPy
-    record array: a column whose every value is a number is float64, any
-    other a string column."""
+    record array: names (of probes, bodies, blocks, stages) and reasons as
+    strings, every other column as float64."""
     rows = list(csv.reader(io.StringIO(text)))
+    if not rows:
+        raise ValueError("a series has at least its header line")
     header, body = rows[0], rows[1:]
     columns: list[Any] = []
     dtypes = []
     for k, name in enumerate(header):
         values = [row[k] for row in body]
         try:
+            if name in _TEXT_COLUMNS:
+                raise ValueError(name)
             column: Any = np.array([float(v) for v in values], dtype=np.float64)
             dtype: Any = np.float64
         except ValueError:

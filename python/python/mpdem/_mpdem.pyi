@@ -34,9 +34,10 @@ class NumericalFailure(RuntimeError):
     message: str
     """The engine's message: where, which field, what is wrong."""
     step: int
-    """The step being computed (1-based; absent for a failure in ``run``)."""
+    """The step being computed (1-based). Set by ``Simulation``'s stepping
+    only: a failure in ``mpdem.run`` names its step in ``message``."""
     time: float
-    """The time at the start of that step (s; absent for a failure in ``run``)."""
+    """The time at the start of that step (s); as ``step``."""
 
 class RunError(RuntimeError):
     """A run that could not start or finish writing its output folder."""
@@ -67,10 +68,13 @@ class Scene:
         """The scene as RON text that ``from_ron`` and the CLI read back."""
     def get(self, key_path: str) -> Any:
         """The value at ``key_path``, e.g. ``"materials[0].density"`` or
-        ``"materials[sand].model.DruckerPrager.friction_angle"``."""
+        ``"materials[sand].model.DruckerPrager.friction_angle"``; a path
+        that leads nowhere raises ``KeyError``, one that does not parse
+        ``ValueError``."""
     def set(self, key_path: str, value: Any) -> None:
-        """Sets the value at ``key_path`` and validates again; on an error
-        the scene is unchanged and ``SceneError`` names the key path."""
+        """Sets the value at ``key_path`` and validates again. A value the
+        scene refuses raises ``SceneError`` naming its key path, a path that
+        leads nowhere ``KeyError``; either way the scene is unchanged."""
     @property
     def name(self) -> str:
         """The scene's name."""
@@ -105,6 +109,8 @@ class Body:
     """Mass (kg per metre), N."""
     inelastic_work: npt.NDArray[np.float64]
     """Plastic and viscous work dissipated since the start (J per metre), N."""
+    plastic_strain: npt.NDArray[np.float64]
+    """Equivalent plastic strain since the start, N."""
     external_force: npt.NDArray[np.float64]
     """External force set on the points (N per metre), N x 2."""
     contact_force: npt.NDArray[np.float64]
@@ -160,9 +166,10 @@ class Simulation:
         every: Optional[float] = None,
         callback: Optional[Callable[[Simulation], Any]] = None,
     ) -> bool:
-        """Steps until time ``t`` or the run's end, calling ``callback(sim)``
-        every ``every`` seconds (or every step); a True return stops the run.
-        Returns whether ``t`` or the end was reached."""
+        """Steps to the step nearest time ``t``, or the run's end, calling
+        ``callback(sim)`` every ``every`` seconds (or every step); a true
+        return value stops the run. Returns whether ``t`` or the end was
+        reached."""
     @property
     def time(self) -> float:
         """Simulated time (s)."""
