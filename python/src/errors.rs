@@ -56,6 +56,8 @@ pub struct ErrorPlace {
 /// `file:line:column: message`, or `key.path: message` for a dict.
 pub fn scene_error(py: Python<'_>, message: &str, place: ErrorPlace) -> PyErr {
     let prefix = match (&place.file, place.line_col, &place.key_path) {
+        // A message that names its field already is not prefixed twice.
+        (_, _, Some(keys)) if message.starts_with(&format!("{keys}:")) => String::new(),
         (_, _, Some(keys)) => format!("{keys}: "),
         (Some(file), Some((line, col)), None) => format!("{file}:{line}:{col}: "),
         (Some(file), None, None) => format!("{file}: "),
