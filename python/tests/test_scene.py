@@ -161,3 +161,11 @@ def test_a_serialized_scene_with_optional_fields_reads_back():
     again = mpdem.Scene.from_ron(scene.to_ron(), folder=SCENES)
     assert again.to_dict() == scene.to_dict()
     scene.set("time.end", 21.0)  # edits still validate the whole scene
+
+
+def test_an_error_that_names_its_field_names_it_once():
+    scene = shipped("wave_1d")
+    with pytest.raises(mpdem.SceneError) as caught:
+        scene.set("output.frame_interval", -1.0)
+    assert caught.value.key_path == "output.frame_interval"
+    assert str(caught.value).count("output.frame_interval") == 1
