@@ -8,6 +8,9 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 use std::path::{Path, PathBuf};
 
+/// What pickling a scene gives: the constructor and its arguments.
+type Reduced<'py> = (Bound<'py, PyAny>, (Bound<'py, PyAny>, PathBuf));
+
 /// The name a scene given as text takes when it names none, and the file
 /// its messages would cite (they cite line and column only).
 const TEXT_SCENE_FILE: &str = "scene.ron";
@@ -126,6 +129,21 @@ impl PyScene {
             .iter()
             .map(ToString::to_string)
             .collect()
+    }
+
+    /// Pickling (and `copy`) go through the dict, so that a sweep can hand
+    /// scenes to worker processes.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Reduced<'py>> {
+        let this = slf.borrow();
+        let rebuild = slf.get_type().getattr("from_dict")?;
+        Ok((rebuild, (this.to_dict(slf.py())?, this.folder.clone())))
+    }
+
+    /// Scenes are equal when every field is.
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<Self>()
+            .is_ok_and(|other| other.borrow().scene == self.scene)
     }
 
     fn __repr__(&self) -> String {

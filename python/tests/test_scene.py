@@ -169,3 +169,18 @@ def test_an_error_that_names_its_field_names_it_once():
         scene.set("output.frame_interval", -1.0)
     assert caught.value.key_path == "output.frame_interval"
     assert str(caught.value).count("output.frame_interval") == 1
+
+
+def test_scenes_pickle_copy_and_compare_by_their_fields():
+    import copy
+    import pickle
+
+    scene = shipped("granular_collapse_bui")
+    for again in [pickle.loads(pickle.dumps(scene)), copy.deepcopy(scene), copy.copy(scene)]:
+        assert again == scene and again is not scene
+        assert again.to_dict() == scene.to_dict()
+    other = copy.deepcopy(scene)
+    other.set("materials[rods].model.DruckerPrager.friction_angle", 25.0)
+    assert other != scene
+    assert scene.get("materials[0].model.DruckerPrager.friction_angle") == 19.8
+    assert scene != "a scene"

@@ -84,6 +84,10 @@ class Scene:
     @property
     def warnings(self) -> list[str]:
         """Warnings about spellings of earlier releases."""
+    def __eq__(self, other: object) -> bool:
+        """Whether ``other`` is a scene with every field equal."""
+    def __reduce__(self) -> tuple[Any, tuple[dict[str, Any], pathlib.Path]]:
+        """Pickling and ``copy`` go through ``to_dict`` and ``from_dict``."""
 
 class Body:
     """A snapshot of one body's points between steps (copies, SI units)."""
