@@ -16,6 +16,7 @@
 
 use crate::checkpoint::CheckpointError;
 use crate::io::RunOutput;
+pub use crate::io::manifest::SceneOrigin;
 use crate::io::manifest::written_by;
 use crate::math::Real;
 use crate::plugins::DefaultPlugins;
@@ -130,20 +131,18 @@ pub enum RunError {
         .0.display()
     )]
     SymbolicLink(PathBuf),
-    /// The folder holds the results of another scene file's run.
+    /// The folder holds the results of another scene's run.
     #[error(
-        "{} holds the results of {}, not of {}: choose another folder (--out), or --overwrite to replace them",
-        dir.display(),
-        theirs.display(),
-        ours.display()
+        "{} holds the results of {theirs}, not of {ours}: choose another folder (--out), or --overwrite to replace them",
+        dir.display()
     )]
     OtherScenesFolder {
         /// The output folder.
         dir: PathBuf,
-        /// The scene file whose run wrote it.
-        theirs: PathBuf,
-        /// The scene file of this run.
-        ours: PathBuf,
+        /// The scene whose run wrote it.
+        theirs: SceneOrigin,
+        /// The scene of this run.
+        ours: SceneOrigin,
     },
     /// The checkpoint is at or past the run's end: its scene's end, or
     /// where its last stage ended it.
@@ -310,14 +309,18 @@ impl Runner {
                 .unwrap_or(path.to_path_buf())
         });
         if options.start != Start::Resume && !options.replace_other_scene {
-            if let Some(ours) = &source
-                && let Some(theirs) = written_by(&options.out).map_err(RunError::Output)?
-                && &theirs != ours
+            // A scene without a file is told apart by its name.
+            let ours = match &source {
+                Some(source) => SceneOrigin::File(source.clone()),
+                None => SceneOrigin::Named(scene.display_name().to_owned()),
+            };
+            if let Some(theirs) = written_by(&options.out).map_err(RunError::Output)?
+                && theirs != ours
             {
                 return Err(RunError::OtherScenesFolder {
                     dir: options.out.clone(),
                     theirs,
-                    ours: ours.clone(),
+                    ours,
                 });
             }
             if let Some(example) = foreign_entry(&options.out).map_err(RunError::Output)? {

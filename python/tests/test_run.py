@@ -90,3 +90,19 @@ def test_an_empty_folder_name_is_the_current_folder_with_its_checks(tmp_path, mo
 def test_resume_and_restart_are_one_or_the_other(tmp_path):
     with pytest.raises(ValueError, match="give one"):
         mpdem.run(shipped("wave_1d", end=0.001), out=tmp_path / "o", resume=True, restart=True)
+
+
+def test_a_scene_without_a_file_does_not_replace_another_scenes_results(tmp_path):
+    first = mpdem.Scene.from_dict(shipped("wave_1d", end=0.001).to_dict())
+    mpdem.run(first, out=tmp_path / "o")
+    # The same scene (by name) carries on into its own folder.
+    mpdem.run(first, out=tmp_path / "o")
+    second = mpdem.Scene.from_dict(first.to_dict())
+    second.set("name", "other_wave")
+    with pytest.raises(mpdem.RunError, match="holds the results of the scene 'wave_1d'"):
+        mpdem.run(second, out=tmp_path / "o")
+    with pytest.raises(mpdem.RunError, match=r"not of .*wave_1d\.ron"):
+        mpdem.run(shipped("wave_1d", end=0.001), out=tmp_path / "o")
+    mpdem.run(second, out=tmp_path / "o", overwrite=True)
+    listed = (tmp_path / "o" / "outputs.txt").read_text().splitlines()
+    assert listed[1] == "# scene without a file: other_wave"

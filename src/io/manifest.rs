@@ -28,6 +28,28 @@ pub const SIGNATURE: &str =
 /// run wrote the folder (absolute), when the run had one.
 pub const SCENE_PREFIX: &str = "# scene: ";
 
+/// The start of the list's second line for a run of a scene without a
+/// file (built in code, from text or from a dict): the scene's name.
+pub const SCENE_NAME_PREFIX: &str = "# scene without a file: ";
+
+/// The scene a run is of, as the folder's list names it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum SceneOrigin {
+    /// A scene file (absolute path).
+    File(PathBuf),
+    /// A scene without a file, by its name.
+    Named(String),
+}
+
+impl std::fmt::Display for SceneOrigin {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::File(path) => write!(f, "{}", path.display()),
+            Self::Named(name) => write!(f, "the scene '{name}' (built without a file)"),
+        }
+    }
+}
+
 /// The files of a run's output folder, relative to it, as written to
 /// [`MANIFEST_FILE`].
 pub struct OutputManifest {
@@ -39,9 +61,9 @@ pub struct OutputManifest {
 impl OutputManifest {
     /// Starts a new run's list in `dir` (and in its `vtk/`): removes every
     /// regular file an earlier run's list names and every temporary file a
-    /// killed run left, then starts the list anew, naming the `scene` file
-    /// the run is of (if any). Returns how many files were removed.
-    pub fn start(dir: &Path, scene: Option<&Path>) -> std::io::Result<(Self, usize)> {
+    /// killed run left, then starts the list anew, naming the scene the run
+    /// is of (if given). Returns how many files were removed.
+    pub fn start(dir: &Path, scene: Option<&SceneOrigin>) -> std::io::Result<(Self, usize)> {
         let mut doomed: Vec<PathBuf> = read_list(dir)?.iter().map(|n| dir.join(n)).collect();
         for folder in [dir.to_path_buf(), dir.join("vtk")] {
             let Ok(entries) = std::fs::read_dir(&folder) else {
@@ -69,8 +91,13 @@ impl OutputManifest {
         let path = dir.join(MANIFEST_FILE);
         let mut file = File::create(&path).map_err(|e| located(&path, e))?;
         writeln!(file, "{SIGNATURE}").map_err(|e| located(&path, e))?;
-        if let Some(scene) = scene {
-            writeln!(file, "{SCENE_PREFIX}{}", scene.display()).map_err(|e| located(&path, e))?;
+        let origin = match scene {
+            Some(SceneOrigin::File(source)) => Some(format!("{SCENE_PREFIX}{}", source.display())),
+            Some(SceneOrigin::Named(name)) => Some(format!("{SCENE_NAME_PREFIX}{name}")),
+            None => None,
+        };
+        if let Some(line) = origin {
+            writeln!(file, "{line}").map_err(|e| located(&path, e))?;
         }
         let manifest = Self {
             dir: dir.to_path_buf(),
@@ -113,10 +140,9 @@ impl OutputManifest {
     }
 }
 
-/// The scene file whose run wrote the folder `dir`, as its list names it:
-/// none without a list or without that line (a scene built in code, or a
-/// folder of an earlier version).
-pub fn written_by(dir: &Path) -> std::io::Result<Option<PathBuf>> {
+/// The scene whose run wrote the folder `dir`, as its list names it: none
+/// without a list or without that line (a folder of an earlier version).
+pub fn written_by(dir: &Path) -> std::io::Result<Option<SceneOrigin>> {
     let path = dir.join(MANIFEST_FILE);
     let file = match File::open(&path) {
         Ok(file) => file,
@@ -128,7 +154,14 @@ pub fn written_by(dir: &Path) -> std::io::Result<Option<PathBuf>> {
         return Ok(None);
     }
     Ok(match lines.next() {
-        Some(Ok(line)) => line.strip_prefix(SCENE_PREFIX).map(PathBuf::from),
+        Some(Ok(line)) => {
+            if let Some(source) = line.strip_prefix(SCENE_PREFIX) {
+                Some(SceneOrigin::File(PathBuf::from(source)))
+            } else {
+                line.strip_prefix(SCENE_NAME_PREFIX)
+                    .map(|name| SceneOrigin::Named(name.to_owned()))
+            }
+        }
         _ => None,
     })
 }

@@ -4,7 +4,7 @@
 use super::animation::{Animation, FrameColumns};
 use super::csv::{self, CsvRecord};
 use super::figure::{Figure, FigureContext};
-use super::manifest::OutputManifest;
+use super::manifest::{OutputManifest, SceneOrigin};
 use super::plot::{Series, plot_points, plot_series};
 use super::vtk::{
     PointFrame, read_collection, write_collection, write_outlines, write_point_frame,
@@ -160,7 +160,7 @@ impl RunOutput {
     /// `scene`'s frame interval; its curves are written at the end. Returns
     /// the output and how many of the earlier run's files were removed.
     /// `source` is the scene's file, if it has one: the folder's list
-    /// names it.
+    /// names it, or else the scene's name.
     pub fn create(
         dir: &Path,
         scene: &Scene,
@@ -169,7 +169,11 @@ impl RunOutput {
     ) -> std::io::Result<(Self, usize)> {
         let vtk = dir.join("vtk");
         std::fs::create_dir_all(&vtk).map_err(|e| located(&vtk, e))?;
-        let (manifest, removed) = OutputManifest::start(dir, source)?;
+        let origin = match source {
+            Some(source) => SceneOrigin::File(source.to_path_buf()),
+            None => SceneOrigin::Named(scene.display_name().to_owned()),
+        };
+        let (manifest, removed) = OutputManifest::start(dir, Some(&origin))?;
         let frame_every = frame_every(scene, sim);
         let bodies = sim.bodies().into_iter().map(|(_, n)| n).collect();
         let animation = animation(scene, sim, frame_every);
