@@ -280,10 +280,9 @@ impl Runner {
     pub fn with_plugins(
         scene: &Scene,
         source: Option<&Path>,
-        options: RunOptions,
+        mut options: RunOptions,
         plugins: DefaultPlugins,
     ) -> Result<Self, RunError> {
-        let mut options = options;
         if options.out.as_os_str().is_empty() {
             // An empty folder name is the current folder, with its checks.
             options.out = PathBuf::from(".");
@@ -310,10 +309,7 @@ impl Runner {
         });
         if options.start != Start::Resume && !options.replace_other_scene {
             // A scene without a file is told apart by its name.
-            let ours = match &source {
-                Some(source) => SceneOrigin::File(source.clone()),
-                None => SceneOrigin::Named(scene.display_name().to_owned()),
-            };
+            let ours = SceneOrigin::of(scene, source.as_deref());
             if let Some(theirs) = written_by(&options.out).map_err(RunError::Output)?
                 && theirs != ours
             {

@@ -285,26 +285,26 @@ impl Simulation {
         &self.registries.point_fields
     }
 
-    /// The series the records hold so far (`energy.csv`, `probes.csv`, …,
-    /// as the scene asks for them), each as its file's name and the text a
-    /// run writes into that file: the header line, then one line per sample.
-    pub fn series_csv(&self) -> Vec<(&'static str, String)> {
+    /// The files of the series the records hold (`energy.csv`,
+    /// `probes.csv`, …, as the scene asks for them), in registration order.
+    pub fn series_files(&self) -> Vec<&'static str> {
+        self.registries.records.iter().map(|r| r.file).collect()
+    }
+
+    /// The text a run writes into the series file `file` (one of
+    /// [`Self::series_files`]) for the samples recorded so far: the header
+    /// line, then one line per sample; `None` for another name.
+    pub fn series_csv(&self, file: &str) -> Option<String> {
+        let record = self.registries.records.iter().find(|r| r.file == file)?;
         let bodies: Vec<String> = self.scene.bodies.iter().map(|b| b.name.clone()).collect();
-        self.registries
-            .records
-            .iter()
-            .map(|record| {
-                let series = (record.series)(&self.world);
-                let mut text = format!("{}\n", series.header()).into_bytes();
-                for k in 0..series.rows() {
-                    series
-                        .write_row(k, &bodies, &mut text)
-                        .expect("writing into memory cannot fail");
-                }
-                let text = String::from_utf8(text).expect("the series write UTF-8 text");
-                (record.file, text)
-            })
-            .collect()
+        let series = (record.series)(&self.world);
+        let mut text = format!("{}\n", series.header()).into_bytes();
+        for k in 0..series.rows() {
+            series
+                .write_row(k, &bodies, &mut text)
+                .expect("writing into memory cannot fail");
+        }
+        Some(String::from_utf8(text).expect("the series write UTF-8 text"))
     }
 
     /// The names of the scalar point fields the plugins add to the frames

@@ -193,19 +193,16 @@ impl PySimulation {
     #[getter]
     fn series_names(&self) -> Vec<String> {
         self.sim
-            .series_csv()
+            .series_files()
             .into_iter()
-            .map(|(file, _)| file.trim_end_matches(".csv").to_owned())
+            .map(|file| file.trim_end_matches(".csv").to_owned())
             .collect()
     }
 
     /// The series `name` as the CSV text its file would hold now.
     fn series_csv(&self, name: &str) -> PyResult<String> {
         self.sim
-            .series_csv()
-            .into_iter()
-            .find(|(file, _)| file.trim_end_matches(".csv") == name)
-            .map(|(_, text)| text)
+            .series_csv(&format!("{name}.csv"))
             .ok_or_else(|| PyKeyError::new_err(format!("no series named {name:?}")))
     }
 

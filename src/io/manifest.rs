@@ -41,6 +41,16 @@ pub enum SceneOrigin {
     Named(String),
 }
 
+impl SceneOrigin {
+    /// The origin of `scene`: its file `source` if it has one, else its name.
+    pub fn of(scene: &crate::scene::Scene, source: Option<&Path>) -> Self {
+        match source {
+            Some(source) => Self::File(source.to_path_buf()),
+            None => Self::Named(scene.display_name().to_owned()),
+        }
+    }
+}
+
 impl std::fmt::Display for SceneOrigin {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {

@@ -169,10 +169,7 @@ impl RunOutput {
     ) -> std::io::Result<(Self, usize)> {
         let vtk = dir.join("vtk");
         std::fs::create_dir_all(&vtk).map_err(|e| located(&vtk, e))?;
-        let origin = match source {
-            Some(source) => SceneOrigin::File(source.to_path_buf()),
-            None => SceneOrigin::Named(scene.display_name().to_owned()),
-        };
+        let origin = SceneOrigin::of(scene, source);
         let (manifest, removed) = OutputManifest::start(dir, Some(&origin))?;
         let frame_every = frame_every(scene, sim);
         let bodies = sim.bodies().into_iter().map(|(_, n)| n).collect();
