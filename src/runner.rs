@@ -22,10 +22,11 @@ use crate::math::Real;
 use crate::plugins::DefaultPlugins;
 use crate::resources::{EnergyLog, EnergySample, StageLog, StagePlan};
 use crate::scene::{Scene, SceneError, whole_steps};
-use crate::simulation::{PluginError, Simulation};
+use crate::simulation::{PluginError, Simulation, StepError};
 use crate::warning::Warning;
 use std::cell::Cell;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
@@ -37,6 +38,12 @@ pub const CHECKPOINT_FILE: &str = "checkpoint.bin";
 /// its files with the first's. It is empty; the system releases the lock
 /// when the run's process ends, however it ends.
 pub const LOCK_FILE: &str = ".mpdem.lock";
+
+/// How long a step may run on after a stop request before a front end cuts
+/// it short (see [`Runner::interrupt_steps_on`]): a step of milliseconds
+/// ends well within it, with its checkpoint; a step of seconds is cut
+/// short, so that a stop is honoured within a second.
+pub const STOP_GRACE: Duration = Duration::from_millis(500);
 
 /// What to do with a checkpoint in the output folder.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -199,6 +206,29 @@ pub enum RunError {
         /// them.
         checkpoint: Option<Result<(), Box<CheckpointError>>>,
     },
+    /// The run was asked to stop, and its step in progress was cut short
+    /// (see [`Runner::interrupt_steps_on`]); the results up to the last
+    /// whole step are written, without a checkpoint of the half-updated
+    /// state.
+    #[error(
+        "stopped inside step {}, which was cut short; results up to step {step} (t = {time:.6e} s) are in {}; {}",
+        step + 1,
+        dir.display(),
+        match checkpoint {
+            Some(at) => format!("the checkpoint of step {at} stays current, and `--resume` carries on from it"),
+            None => "no checkpoint was written".to_string(),
+        }
+    )]
+    CutShort {
+        /// The last whole step.
+        step: u64,
+        /// Its time (s).
+        time: Real,
+        /// The output folder.
+        dir: PathBuf,
+        /// The step of the folder's checkpoint, if it holds one.
+        checkpoint: Option<u64>,
+    },
 }
 
 /// Where a run is, as reported to its progress callback.
@@ -258,6 +288,8 @@ pub struct Runner {
     notices: Vec<String>,
     /// Whether `run` was called: a runner runs once.
     ran: bool,
+    /// The request that cuts a step short (see [`Runner::interrupt_steps_on`]).
+    interrupt: Option<Arc<AtomicBool>>,
 }
 
 impl Runner {
@@ -341,6 +373,7 @@ impl Runner {
             options,
             sim,
             ran: false,
+            interrupt: None,
         })
     }
 
@@ -381,6 +414,14 @@ impl Runner {
         &self.options.out
     }
 
+    /// Makes the run cut its step in progress short once `request` is
+    /// raised, instead of finishing it (see
+    /// [`Simulation::interrupt_steps_on`]): for a stop that cannot wait
+    /// for a long step. The run then ends with [`RunError::CutShort`].
+    pub fn interrupt_steps_on(&mut self, request: Arc<AtomicBool>) {
+        self.interrupt = Some(request);
+    }
+
     /// Runs to the scene's end, or until `stop` is raised (after the step
     /// in progress), writing the results; calls `progress` every 64 steps
     /// and at the end. It holds the folder's lock ([`LOCK_FILE`]) from the
@@ -399,6 +440,9 @@ impl Runner {
         // Held until the run returns.
         let _lock = lock_folder(&dir)?;
         let mut output = self.open_output(&checkpoint)?;
+        if let Some(request) = &self.interrupt {
+            self.sim.interrupt_steps_on(Arc::clone(request));
+        }
         let sim = &mut self.sim;
         let clock = sim.clock();
         let checkpoint_steps = self
@@ -435,10 +479,20 @@ impl Runner {
             };
         report(sim, false, &mut progress);
         let mut failure = None;
+        let mut cut_short = false;
+        // The step of the folder's current checkpoint.
+        let mut checkpoint_at = (self.options.start == Start::Resume).then_some(first_step);
         while !sim.clock().finished() {
-            if let Err(e) = sim.step() {
-                failure = Some(e.to_string());
-                break;
+            match sim.step() {
+                Ok(()) => {}
+                Err(StepError::Interrupted(_)) => {
+                    cut_short = true;
+                    break;
+                }
+                Err(e) => {
+                    failure = Some(e.to_string());
+                    break;
+                }
             }
             let now = sim.clock();
             let at = |e: &dyn std::fmt::Display| {
@@ -449,11 +503,12 @@ impl Runner {
                 break;
             }
             let due = checkpoint_steps.is_some_and(|n| now.step.is_multiple_of(n));
-            if (due || (keeps_checkpoint && now.finished()))
-                && let Err(e) = sim.write_checkpoint(&checkpoint)
-            {
-                failure = Some(format!("cannot write the checkpoint at {}", at(&e)));
-                break;
+            if due || (keeps_checkpoint && now.finished()) {
+                if let Err(e) = sim.write_checkpoint(&checkpoint) {
+                    failure = Some(format!("cannot write the checkpoint at {}", at(&e)));
+                    break;
+                }
+                checkpoint_at = Some(now.step);
             }
             if stop.load(Ordering::SeqCst) {
                 break;
@@ -469,9 +524,9 @@ impl Runner {
         // A stopped run's checkpoint first: it matters more than the plots.
         let now = sim.clock();
         let stopped = failure.is_none() && !now.finished();
-        let stop_checkpoint = (stopped && keeps_checkpoint)
+        let stop_checkpoint = (stopped && keeps_checkpoint && !cut_short)
             .then(|| sim.write_checkpoint(&checkpoint).map_err(Box::new));
-        if let Err(e) = output.finish(sim, failure.is_some()) {
+        if let Err(e) = output.finish(sim, failure.is_some() || cut_short) {
             let written = format!("cannot write the output: {e}");
             let message = match failure {
                 Some(f) => format!("{f}\n{written}"),
@@ -481,6 +536,14 @@ impl Runner {
         }
         if let Some(message) = failure {
             return Err(RunError::Failed { message, dir });
+        }
+        if cut_short {
+            return Err(RunError::CutShort {
+                step: now.step,
+                time: now.time,
+                dir,
+                checkpoint: checkpoint_at,
+            });
         }
         if stopped {
             return Err(RunError::Stopped {

@@ -10,7 +10,7 @@ use crate::io::figure::FigureRecord;
 use crate::io::vtk::PointFieldRecord;
 use crate::math::Real;
 use crate::plugins::{CorePlugin, DefaultPlugins, MpmPlugin, PluginSetup, Registries};
-use crate::resources::{Clock, Diagnostics, NumericalFailure};
+use crate::resources::{Clock, Diagnostics, NumericalFailure, StepInterrupt};
 use crate::scene::{Scene, SceneError, spawn_scene};
 use crate::systems::build_schedule;
 use crate::warning::Warning;
@@ -20,6 +20,8 @@ use serde::Serialize;
 use serde::de::DeserializeOwned;
 use std::any::{Any, TypeId};
 use std::path::Path;
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 
 /// Why a step could not be taken.
 #[derive(Debug, thiserror::Error)]
@@ -31,6 +33,13 @@ pub enum StepError {
     /// touching the same data without an order between them).
     #[error("the step schedule is invalid: {0}")]
     Schedule(String),
+    /// The step was cut short on request (see
+    /// [`Simulation::interrupt_steps_on`]); the simulation takes no
+    /// further step.
+    #[error(
+        "step {0} was cut short on request: its state is half updated, and the simulation takes no further step"
+    )]
+    Interrupted(u64),
 }
 
 /// Why a plugin could not be added.
@@ -199,6 +208,11 @@ impl Simulation {
     /// resource registered with [`Simulation::keep_in_checkpoints`] is
     /// missing from the world.
     pub fn write_checkpoint(&mut self, path: &Path) -> Result<(), CheckpointError> {
+        if self.cut_short() {
+            return Err(CheckpointError::CutShort {
+                path: path.to_path_buf(),
+            });
+        }
         write_checkpoint(
             &mut self.world,
             &self.fingerprint,
@@ -387,16 +401,38 @@ impl Simulation {
     /// Takes one step. A numerical failure found during the step is returned
     /// (and the state is left as the failed step made it).
     pub fn step(&mut self) -> Result<(), StepError> {
+        if self.cut_short() {
+            return Err(StepError::Interrupted(self.clock().step + 1));
+        }
         self.initialize_schedule()?;
         self.schedule.run(&mut self.world);
         // The world records every removal (a stage's plan is taken out and
         // put back each step) until told the step is over, as an app's
         // frame loop does; without this the record grows with every step.
         self.world.clear_trackers();
-        match self.world.resource_mut::<Diagnostics>().failure.take() {
-            Some(failure) => Err(failure.into()),
-            None => Ok(()),
+        if let Some(failure) = self.world.resource_mut::<Diagnostics>().failure.take() {
+            return Err(failure.into());
         }
+        if self.cut_short() {
+            return Err(StepError::Interrupted(self.clock().step + 1));
+        }
+        Ok(())
+    }
+
+    /// Cuts the step in progress short once `request` is raised: the step
+    /// skips its remaining sets and returns [`StepError::Interrupted`],
+    /// and the simulation takes no further step and writes no checkpoint.
+    /// For a stop that cannot wait for a long step to end; a stop between
+    /// steps needs none of this.
+    pub fn interrupt_steps_on(&mut self, request: Arc<AtomicBool>) {
+        self.world.insert_resource(StepInterrupt::new(request));
+    }
+
+    /// Whether a step was cut short (see [`Simulation::interrupt_steps_on`]).
+    pub fn cut_short(&self) -> bool {
+        self.world
+            .get_resource::<StepInterrupt>()
+            .is_some_and(StepInterrupt::cut_short)
     }
 
     /// Steps until the simulated time reaches `time` (within half a step).

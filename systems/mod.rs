@@ -45,7 +45,7 @@ pub(crate) use stages::{advance_stages, dynamic_blocks_in_scene_order, enter_sta
 pub(crate) use stress_update::update_stress;
 pub(crate) use surface_loads::apply_surface_loads;
 
-use crate::resources::UpdateScheme;
+use crate::resources::{StepInterrupt, UpdateScheme};
 use bevy_ecs::prelude::*;
 use bevy_ecs::schedule::{LogLevel, ScheduleBuildSettings, ScheduleLabel, SingleThreadedExecutor};
 
@@ -125,8 +125,19 @@ pub(crate) fn build_schedule(scheme: UpdateScheme) -> Schedule {
         ambiguity_detection: LogLevel::Error,
         ..Default::default()
     });
-    for pair in MpmSystems::order(scheme).windows(2) {
+    let order = MpmSystems::order(scheme);
+    for pair in order.windows(2) {
         schedule.configure_sets(pair[0].before(pair[1]));
+    }
+    for set in order {
+        match set {
+            MpmSystems::Diagnostics | MpmSystems::Last => {
+                schedule.configure_sets(set.run_if(step_is_whole));
+            }
+            _ => {
+                schedule.configure_sets(set.run_if(step_goes_on));
+            }
+        }
     }
     schedule.configure_sets(
         (ContactStep::Blocks, ContactStep::Bodies)
@@ -156,6 +167,18 @@ pub(crate) fn build_schedule(scheme: UpdateScheme) -> Schedule {
             .in_set(MpmSystems::Diagnostics),
     );
     schedule
+}
+
+/// Whether the step goes on into its next set: not once a
+/// [`StepInterrupt`] was requested.
+fn step_goes_on(interrupt: Option<Res<StepInterrupt>>) -> bool {
+    interrupt.is_none_or(|i| i.goes_on())
+}
+
+/// Whether the step so far is whole: the diagnostics and the last hook
+/// finish every step that reached them, and only those.
+fn step_is_whole(interrupt: Option<Res<StepInterrupt>>) -> bool {
+    interrupt.is_none_or(|i| !i.cut_short())
 }
 
 /// The ordered steps of [`MpmSystems::Contact`].

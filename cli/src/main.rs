@@ -61,7 +61,7 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(stopped @ Failure::Run(RunError::Stopped { .. })) => {
+        Err(stopped @ Failure::Run(RunError::Stopped { .. } | RunError::CutShort { .. })) => {
             console::say_err(&stopped.to_string());
             ExitCode::from(STOPPED_STATUS)
         }

@@ -88,7 +88,8 @@ fn run_scene(path: &Path, request: RunRequest) -> Result<(), Failure> {
     for w in runner.warnings() {
         say_warning(path, w);
     }
-    let stop = stop_on_signals();
+    let signals = stop_on_signals();
+    runner.interrupt_steps_on(signals.cut_short);
     let bar = progress_bar(
         0,
         request.quiet,
@@ -99,7 +100,7 @@ fn run_scene(path: &Path, request: RunRequest) -> Result<(), Failure> {
     // The latest report not yet logged, logged when the run ends.
     let mut unlogged: Option<String> = None;
     let mut notices_shown = 0;
-    let result = runner.run(&stop, |p| {
+    let result = runner.run(&signals.stop, |p| {
         let stage = p.stage.map_or(String::new(), |s| format!(", stage '{s}'"));
         let of = match p.stage {
             Some(_) => format!("at most {}", p.length),

@@ -1,8 +1,10 @@
 //! Stop signals: the first one asks the run to stop after its step and
-//! write its results; a later one ends the process at once.
+//! write its results, cutting the step short if it is still running
+//! [`STOP_GRACE`] later; a later one ends the process at once.
 
 use crate::STOPPED_STATUS;
 use crate::console::say_err;
+use mpdem::runner::STOP_GRACE;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -12,22 +14,41 @@ use std::time::{Duration, Instant};
 /// group at once, so one request can arrive twice within microseconds.
 const SIGNAL_REPEAT_WINDOW: Duration = Duration::from_secs(1);
 
-/// A flag the first Ctrl-C, SIGTERM or SIGHUP raises, so that the run
-/// stops after its step and writes its results (and a checkpoint, if it
-/// writes them); another one, [`SIGNAL_REPEAT_WINDOW`] or more after the
-/// first, ends the process at once.
-pub fn stop_on_signals() -> Arc<AtomicBool> {
-    let stop = Arc::new(AtomicBool::new(false));
-    let flag = Arc::clone(&stop);
+/// What the stop signals raise.
+pub struct StopRequest {
+    /// Raised by the first signal: the run stops after its step.
+    pub stop: Arc<AtomicBool>,
+    /// Raised [`STOP_GRACE`] the first signal: the step in progress
+    /// is cut short.
+    pub cut_short: Arc<AtomicBool>,
+}
+
+/// Flags the first Ctrl-C, SIGTERM or SIGHUP raises, so that the run stops
+/// after its step (or cuts a long step short) and writes its results (and
+/// a checkpoint, if it writes them and its step was whole); another one,
+/// [`SIGNAL_REPEAT_WINDOW`] or more after the first, ends the process at
+/// once.
+pub fn stop_on_signals() -> StopRequest {
+    let request = StopRequest {
+        stop: Arc::new(AtomicBool::new(false)),
+        cut_short: Arc::new(AtomicBool::new(false)),
+    };
+    let stop = Arc::clone(&request.stop);
+    let cut_short = Arc::clone(&request.cut_short);
     let mut first: Option<Instant> = None;
     let handler = ctrlc::set_handler(move || {
-        flag.store(true, Ordering::SeqCst);
+        stop.store(true, Ordering::SeqCst);
         match first {
             None => {
                 first = Some(Instant::now());
                 say_err(
-                    "stop requested: the run stops after its step and writes its results (another stop signal a second or more from now ends it at once, without them)",
+                    "stop requested: the run stops after its step (cut short if it runs on for half a second) and writes its results (another stop signal a second or more from now ends it at once, without them)",
                 );
+                let cut_short = Arc::clone(&cut_short);
+                std::thread::spawn(move || {
+                    std::thread::sleep(STOP_GRACE);
+                    cut_short.store(true, Ordering::SeqCst);
+                });
             }
             Some(at) if at.elapsed() >= SIGNAL_REPEAT_WINDOW => {
                 say_err("second stop signal: exiting now, without the results not yet written");
@@ -41,5 +62,5 @@ pub fn stop_on_signals() -> Arc<AtomicBool> {
             "warning: a stop signal will end the run without writing its results: {e}"
         ));
     }
-    stop
+    request
 }

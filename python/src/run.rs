@@ -4,11 +4,12 @@
 use crate::errors::{from_run_error, warn};
 use crate::scene::PyScene;
 use crate::threads::thread_pool;
-use mpdem::runner::{RunOptions, Runner, Start};
+use mpdem::runner::{RunOptions, Runner, STOP_GRACE, Start};
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// How often a run looks for Ctrl-C.
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
@@ -88,8 +89,11 @@ pub fn run(
         warn(py, &w.to_string())?;
     }
     let stop = AtomicBool::new(false);
+    let cut_short = Arc::new(AtomicBool::new(false));
+    runner.interrupt_steps_on(Arc::clone(&cut_short));
     let finished = AtomicBool::new(false);
     let mut interrupt: Option<PyErr> = None;
+    let mut interrupted_at: Option<Instant> = None;
     let result = py.detach(|| {
         std::thread::scope(|scope| {
             let stepping = scope.spawn(|| {
@@ -105,7 +109,12 @@ pub fn run(
                     && let Err(e) = Python::attach(|py| py.check_signals())
                 {
                     interrupt = Some(e);
+                    interrupted_at = Some(Instant::now());
                     stop.store(true, Ordering::SeqCst);
+                }
+                // A step still running after the grace is cut short.
+                if interrupted_at.is_some_and(|at| at.elapsed() >= STOP_GRACE) {
+                    cut_short.store(true, Ordering::SeqCst);
                 }
             }
             stepping.join()

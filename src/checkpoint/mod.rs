@@ -218,6 +218,16 @@ pub enum CheckpointError {
     /// The scene itself could not be built.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// The simulation's last step was cut short: its state is half updated
+    /// and is not written.
+    #[error(
+        "{}: not written: the step in progress was cut short, so the state is half updated",
+        path.display()
+    )]
+    CutShort {
+        /// The checkpoint file.
+        path: PathBuf,
+    },
     /// A checkpoint was to be restored into a simulation that cannot take
     /// it (one that has stepped, or was built from another scene).
     #[error("cannot restore {}: {reason}", path.display())]

@@ -13,6 +13,7 @@ mod settings;
 mod shared_layers;
 mod stage_spec;
 mod stages;
+mod step_interrupt;
 
 pub use crate::geometry::Geometry;
 pub use body_contacts::{BodyContacts, BodyPairLaw, PairSummary};
@@ -34,3 +35,4 @@ pub(crate) use shared_layers::SharedLayers;
 pub use stage_spec::{BlockVelocity, EdgeChanges, Side, StageEnd, StageSpec, SurfaceTraction};
 pub(crate) use stages::{AppliedLoad, StagePlan, StageProgress};
 pub use stages::{StageEndReason, StageLog, StageRecord};
+pub use step_interrupt::StepInterrupt;
