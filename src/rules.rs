@@ -51,6 +51,24 @@ pub enum RuleError {
     /// A contact stiffness beyond any use.
     #[error("expected a stiffness > 0 and at most {MAX_STIFFNESS:e}, got {}", shown(*.0))]
     Stiffness(Real),
+    /// A speed beyond any impact's.
+    #[error("expected a speed of at most {MAX_SPEED:e} m/s, got {}", shown(*.0))]
+    Speed(Real),
+    /// A spin beyond any block's.
+    #[error("expected a spin of at most {MAX_SPIN:e} rad/s, got {}", shown(*.0))]
+    Spin(Real),
+    /// A friction coefficient outside [0, 10].
+    #[error("expected a friction coefficient from 0 to {MAX_FRICTION}, got {}", shown(*.0))]
+    Friction(Real),
+    /// An earth pressure coefficient outside [0, 10].
+    #[error(
+        "expected an earth pressure coefficient from 0 to {MAX_EARTH_PRESSURE_COEFFICIENT}, got {}",
+        shown(*.0)
+    )]
+    EarthPressure(Real),
+    /// A viscosity that is negative or beyond any flow's.
+    #[error("expected a viscosity ≥ 0 and at most {MAX_VISCOSITY:e} Pa s, got {} Pa s", shown(*.0))]
+    Viscosity(Real),
     /// A name that cannot be a file name, and why.
     #[error("{0}")]
     FileName(String),
@@ -88,6 +106,12 @@ pub fn shown(x: Real) -> String {
     } else {
         format!("{x:e}")
     }
+}
+
+/// A value worked out from the input, as [`shown`] with four significant
+/// digits (0.01, not 0.010000000000000002).
+pub fn shown_rounded(x: Real) -> String {
+    shown(format!("{x:.3e}").parse().unwrap_or(x))
 }
 
 /// Most characters of a piece of input a message echoes.
@@ -171,6 +195,81 @@ pub fn stiffness(value: Real) -> Result<Real, RuleError> {
         Ok(value)
     } else {
         Err(RuleError::Stiffness(value))
+    }
+}
+
+/// Fastest speed a point or a block may start with (m/s): ten times the
+/// fastest hypervelocity impacts (about 10 km/s); beyond it a value is a
+/// unit typed wrong, and no time step resolves the motion.
+pub const MAX_SPEED: Real = 1e5;
+
+/// A velocity's size: finite, at most [`MAX_SPEED`].
+pub fn speed(value: Real) -> Result<Real, RuleError> {
+    if value.abs() <= MAX_SPEED {
+        Ok(value)
+    } else {
+        Err(RuleError::Speed(value))
+    }
+}
+
+/// Fastest spin a block may have (rad/s): a 1 cm block's edge at
+/// [`MAX_SPEED`] / 10.
+pub const MAX_SPIN: Real = 1e6;
+
+/// A spin's size: finite, at most [`MAX_SPIN`].
+pub fn spin(value: Real) -> Result<Real, RuleError> {
+    if value.abs() <= MAX_SPIN {
+        Ok(value)
+    } else {
+        Err(RuleError::Spin(value))
+    }
+}
+
+/// A rigid velocity: its speed within [`MAX_SPEED`] and its spin within
+/// [`MAX_SPIN`]; the message names which.
+pub fn rigid_velocity(linear: glam::DVec2, angular: Real) -> Result<(), String> {
+    speed(linear.length()).map_err(|e| format!("velocity: {e}"))?;
+    spin(angular).map_err(|e| format!("angular velocity: {e}"))?;
+    Ok(())
+}
+
+/// Largest Coulomb friction coefficient (a friction angle of 84°): the
+/// roughest interfaces measured (rubber on rough rock) stay below 4.
+pub const MAX_FRICTION: Real = 10.0;
+
+/// A friction coefficient in [0, [`MAX_FRICTION`]].
+pub fn friction(value: Real) -> Result<Real, RuleError> {
+    if (0.0..=MAX_FRICTION).contains(&value) {
+        Ok(value)
+    } else {
+        Err(RuleError::Friction(value))
+    }
+}
+
+/// Largest earth pressure coefficient at rest K0: above the passive
+/// coefficient of any soil (5.8 at φ = 45°) and of heavily overconsolidated
+/// clays (about 3).
+pub const MAX_EARTH_PRESSURE_COEFFICIENT: Real = 10.0;
+
+/// An earth pressure coefficient in [0, [`MAX_EARTH_PRESSURE_COEFFICIENT`]].
+pub fn earth_pressure_coefficient(value: Real) -> Result<Real, RuleError> {
+    if (0.0..=MAX_EARTH_PRESSURE_COEFFICIENT).contains(&value) {
+        Ok(value)
+    } else {
+        Err(RuleError::EarthPressure(value))
+    }
+}
+
+/// Largest dynamic viscosity (Pa s): glacier ice's (about 10¹³), the most
+/// viscous flow a run of this field meets.
+pub const MAX_VISCOSITY: Real = 1e13;
+
+/// A dynamic viscosity in [0, [`MAX_VISCOSITY`]].
+pub fn viscosity(value: Real) -> Result<Real, RuleError> {
+    if (0.0..=MAX_VISCOSITY).contains(&value) {
+        Ok(value)
+    } else {
+        Err(RuleError::Viscosity(value))
     }
 }
 
@@ -387,6 +486,11 @@ pub fn de_non_negative<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error
     checked(d, non_negative)
 }
 
+/// `deserialize_with` form of [`viscosity`].
+pub fn de_viscosity<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
+    checked(d, viscosity)
+}
+
 /// `deserialize_with` form of [`fraction`].
 pub fn de_fraction<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
     checked(d, fraction)
@@ -441,5 +545,7 @@ mod tests {
         assert_eq!(shown(1e300), "1e300");
         assert_eq!(shown(2.5), "2.5");
         assert_eq!(shown(-1e-7), "-1e-7");
+        assert_eq!(shown_rounded(0.1 * 0.1), "0.01");
+        assert_eq!(shown_rounded(2.0_f64.sqrt() / 20.0), "0.07071");
     }
 }

@@ -13,7 +13,7 @@ pub struct ContactLaw {
     pub normal_stiffness: Real,
     /// Tangential stiffness k_t (N/m per metre of thickness), > 0.
     pub tangential_stiffness: Real,
-    /// Friction coefficient μ ≥ 0.
+    /// Friction coefficient μ, from 0 to 10.
     pub friction: Real,
     /// Normal viscous damping c_n (N s/m per metre), ≥ 0. Default 0: eq. 18
     /// has none; add some to settle impacts faster.
@@ -51,7 +51,8 @@ impl ContactLaw {
             crate::rules::stiffness(k)
                 .map_err(|e| ParameterError::Inconsistent(format!("{name}: {e}")))?;
         }
-        non_negative("friction", self.friction)?;
+        crate::rules::friction(self.friction)
+            .map_err(|e| ParameterError::Inconsistent(format!("friction: {e}")))?;
         non_negative("normal_damping", self.normal_damping)
     }
 

@@ -15,7 +15,7 @@
 
 use super::{ConstitutiveModel, PointStep};
 use crate::math::{DMat2, Real, SymTensor};
-use crate::rules::{ParameterError, non_negative, positive};
+use crate::rules::{ParameterError, positive};
 use serde::{Deserialize, Serialize};
 
 /// Parameters of the model (scene `NewtonianFluid((...))`).
@@ -34,8 +34,9 @@ pub struct NewtonianFluid {
         deserialize_with = "crate::rules::de_positive"
     )]
     pub gamma: Real,
-    /// Dynamic viscosity μ_w (Pa·s), ≥ 0 (0: inviscid). Water: 8.9e-4.
-    #[serde(deserialize_with = "crate::rules::de_non_negative")]
+    /// Dynamic viscosity μ_w (Pa·s), from 0 (inviscid) to 1e13. Water:
+    /// 8.9e-4.
+    #[serde(deserialize_with = "crate::rules::de_viscosity")]
     pub viscosity: Real,
 }
 
@@ -49,7 +50,7 @@ impl NewtonianFluid {
     pub fn check(&self) -> Result<(), ParameterError> {
         crate::rules::modulus(self.bulk_modulus).map_err(|e| e.at("bulk_modulus"))?;
         positive(self.gamma).map_err(|e| e.at("gamma"))?;
-        non_negative(self.viscosity).map_err(|e| e.at("viscosity"))?;
+        crate::rules::viscosity(self.viscosity).map_err(|e| e.at("viscosity"))?;
         Ok(())
     }
 

@@ -341,11 +341,15 @@ pub enum MotionSpec {
     },
     /// Moves under reactions and gravity, with mass properties given.
     DynamicWithMass {
-        /// Mass (kg per metre of thickness), > 0.
+        /// Mass (kg per metre of thickness): over the shape's area, a
+        /// density within a material's range.
         mass: Real,
-        /// Moment of inertia about the centre of mass (kg m² per metre), > 0.
+        /// Moment of inertia about the centre of mass (kg m² per metre): from
+        /// 10⁻⁶ to 1 times the mass times the squared distance to the farthest
+        /// corner of the shape's bounds.
         inertia: Real,
-        /// Centre of mass in the block's frame (m). Default: the frame origin.
+        /// Centre of mass in the block's frame (m), within the shape's bounds.
+        /// Default: the frame origin.
         #[serde(default)]
         center: DVec2,
         /// Initial velocity. Default: at rest.
@@ -386,7 +390,8 @@ pub enum InitialStress {
     /// At-rest state under gravity: σ_yy = −ρ |g_y| (surface − y),
     /// σ_xx = σ_zz = K0 σ_yy, no shear (compression negative).
     Geostatic {
-        /// Lateral earth pressure coefficient K0 ≥ 0 (ν/(1−ν) for an elastic soil).
+        /// Lateral earth pressure coefficient K0, 0 to 10 (ν/(1−ν) for an
+        /// elastic soil).
         #[serde(deserialize_with = "rules::de_non_negative")]
         k0: Real,
         /// Height of the free surface (m). Default: the top of the body, a body

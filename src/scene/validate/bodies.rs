@@ -196,22 +196,28 @@ impl Scene {
         points: &[ListedPoint],
     ) -> Result<(), SceneError> {
         let fail = v.entry("bodies", "body", &b.name);
-        if let InitialVelocity::Constant(velocity) = b.velocity
-            && !velocity.is_finite()
-        {
-            let message = format!("velocity must be finite, got {velocity}");
-            return Err(fail("velocity", message));
+        if let InitialVelocity::Constant(velocity) = b.velocity {
+            rules::speed(velocity.length())
+                .map_err(|e| fail("velocity", format!("velocity: {e}")))?;
         }
         if let InitialVelocity::Field { x, y } = &b.velocity {
             let field = VelocityField::parse(x, y).map_err(|e| fail("velocity", e.to_string()))?;
             for p in points {
-                field
+                let velocity = field
                     .at(p.position)
                     .map_err(|e| fail("velocity", e.to_string()))?;
+                rules::speed(velocity.length()).map_err(|e| {
+                    let (x, y) = (
+                        rules::shown_rounded(p.position.x),
+                        rules::shown_rounded(p.position.y),
+                    );
+                    fail("velocity", format!("velocity at ({x}, {y}): {e}"))
+                })?;
             }
         }
         if let Some(InitialStress::Geostatic { k0, surface }) = &b.initial_stress {
-            rules::non_negative(*k0).map_err(|e| fail("initial_stress", format!("k0: {e}")))?;
+            rules::earth_pressure_coefficient(*k0)
+                .map_err(|e| fail("initial_stress", format!("k0: {e}")))?;
             if surface.is_some_and(|s| !s.is_finite()) {
                 let message = "the geostatic surface must be finite".to_string();
                 return Err(fail("initial_stress", message));

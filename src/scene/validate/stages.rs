@@ -129,9 +129,8 @@ impl Scene {
                         ),
                     ));
                 }
-                if !(change.velocity.linear.is_finite() && change.velocity.angular.is_finite()) {
-                    return Err(fail("block_velocities", "velocity must be finite".into()));
-                }
+                crate::rules::rigid_velocity(change.velocity.linear, change.velocity.angular)
+                    .map_err(|e| fail("block_velocities", e))?;
             }
             for (k, traction) in stage.tractions.iter().enumerate() {
                 if stage.tractions[..k]
