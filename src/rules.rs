@@ -43,7 +43,10 @@ pub enum RuleError {
     )]
     Density(Real),
     /// An elastic modulus beyond any material's.
-    #[error("expected a modulus > 0 and at most {MAX_MODULUS:e} Pa, got {} Pa", shown(*.0))]
+    #[error(
+        "expected a modulus from {MIN_MODULUS} to {MAX_MODULUS:e} Pa, got {} Pa",
+        shown(*.0)
+    )]
     Modulus(Real),
     /// A strength or a load (Pa) that is negative or beyond any material's.
     #[error("expected a stress ≥ 0 and at most {MAX_MODULUS:e} Pa, got {} Pa", shown(*.0))]
@@ -163,9 +166,14 @@ pub fn density(value: Real) -> Result<Real, RuleError> {
 /// wrong, and the time step it needs is below any run's.
 pub const MAX_MODULUS: Real = 1e13;
 
-/// An elastic modulus: positive, at most [`MAX_MODULUS`].
+/// Softest elastic modulus a material may have (Pa): a hundredth of the
+/// softest gels' (about 100 Pa); below it a value is a unit typed wrong,
+/// and the strain energy of any stress overflows.
+pub const MIN_MODULUS: Real = 1.0;
+
+/// An elastic modulus within [`MIN_MODULUS`] and [`MAX_MODULUS`].
 pub fn modulus(value: Real) -> Result<Real, RuleError> {
-    if value > 0.0 && value <= MAX_MODULUS {
+    if (MIN_MODULUS..=MAX_MODULUS).contains(&value) {
         Ok(value)
     } else {
         Err(RuleError::Modulus(value))
@@ -441,9 +449,17 @@ pub fn de_density<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
     checked(d, density)
 }
 
-/// `deserialize_with` form of [`modulus`].
+/// `deserialize_with` form of [`modulus`] without its lower bound, which
+/// the model's check applies (a parse only refuses what no model takes:
+/// a value ≤ 0 or beyond [`MAX_MODULUS`]).
 pub fn de_modulus<'de, D: Deserializer<'de>>(d: D) -> Result<Real, D::Error> {
-    checked(d, modulus)
+    checked(d, |value| {
+        if value > 0.0 && value <= MAX_MODULUS {
+            Ok(value)
+        } else {
+            Err(RuleError::Modulus(value))
+        }
+    })
 }
 
 /// `deserialize_with` form of [`positive`].

@@ -1,13 +1,15 @@
-//! Property-based fuzzing of the scene format: a shipped scene with one
-//! value pushed to an extreme, one name made hostile, or one line dropped
-//! or repeated. Each mutant is parsed and, if accepted, built and stepped a
-//! few times on a thread with a time limit: no panic, no hang, and no
-//! non-finite state or energy after a step that reported no failure.
+//! Property-based fuzzing of the scene format: a shipped scene with one to
+//! four mutations at once: values pushed to extremes, names made hostile,
+//! lists emptied or their first entry duplicated, fields dropped or
+//! repeated, lines dropped or repeated. Each mutant is parsed and, if
+//! accepted, built and stepped a few times on a thread with a time limit:
+//! no panic, no hang, and no non-finite state, energy or recorded value
+//! after steps that reported no failure.
 //!
-//! `PROPTEST_CASES` sets the number of mutants (50 000 by default, about a
-//! minute on 2 cores); a long run is `PROPTEST_CASES=1000000 cargo test --release --test
-//! fuzz_scenes`. proptest keeps the seed of a failure under
-//! `proptest-regressions/`, and replays it first on every later run.
+//! `PROPTEST_CASES` sets the number of mutants (80 000 by default, about two
+//! minutes on 2 cores); a long run is `PROPTEST_CASES=1000000 cargo test
+//! --release --test fuzz_scenes`. proptest keeps the seed of a failure
+//! in `tests/fuzz_scenes.proptest-regressions`, and replays it first on every later run.
 
 mod common;
 
@@ -17,14 +19,32 @@ use proptest::prelude::*;
 use std::path::Path;
 use std::time::Duration;
 
-/// The scenes mutated: small enough to build and step in milliseconds.
-const SCENES: [&str; 6] = [
-    "wave_1d.ron",
-    "elastic_column.ron",
-    "rigid_drop.ron",
-    "sliding_45.ron",
+/// The scenes mutated: every shipped scene. Those of many points are
+/// stepped less (see [`steps_for`]).
+const SCENES: [&str; 23] = [
+    "axisymmetric_punch.ron",
     "block_on_ground.ron",
+    "circular_footing.ron",
+    "column_collapse.ron",
+    "dam_break.ron",
+    "elastic_column.ron",
+    "geostatic_column.ron",
+    "granular_collapse_bui.ron",
+    "granular_slab.ron",
+    "hertz_disks.ron",
+    "pile_penetration.ron",
+    "pile_penetration_axisymmetric.ron",
+    "rigid_drop.ron",
+    "rigid_tip.ron",
+    "sliding_45.ron",
+    "stacked_blocks.ron",
+    "strip_footing.ron",
     "toppling_14.ron",
+    "toppling_16.ron",
+    "toppling_18.ron",
+    "toppling_20.ron",
+    "two_rings.ron",
+    "wave_1d.ron",
 ];
 
 /// Values a number is replaced with: zeros, signs, the edges of f64 and
@@ -58,16 +78,32 @@ const HOSTILE: [&str; 8] = [
     "xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx",
 ];
 
-/// Steps taken of an accepted mutant.
+/// Most steps taken of an accepted mutant.
 const STEPS: usize = 20;
+
+/// Point-steps an accepted mutant is given: a mutant of many points takes
+/// fewer steps (at least [`FEWEST_STEPS`]).
+const POINT_STEPS: Real = 2e5;
+
+/// Fewest steps taken of an accepted mutant.
+const FEWEST_STEPS: usize = 2;
+
+/// The steps a mutant of `points` points takes.
+fn steps_for(points: Real) -> usize {
+    ((POINT_STEPS / points.max(1.0)) as usize).clamp(FEWEST_STEPS, STEPS)
+}
 
 /// Longest a mutant may take to parse, build and step (a hang otherwise).
 const TIME_LIMIT: Duration = Duration::from_secs(60);
 
-/// Most points and grid nodes of a mutant that is stepped: a mutant that
+/// Most points a mutant that is built and stepped may have: a mutant that
 /// asks for more (a cell size pushed to 1e-20, say) is refused by the
-/// scene's caps only past 2e7 points, too many for this test's budget.
-const MOST_POINTS: Real = 2e5;
+/// scene's caps only past 2e7 points, too many for this test's budget; it
+/// is parsed and validated only.
+const MOST_POINTS: Real = 1e5;
+
+/// Most mutations applied to one scene at once.
+const MOST_MUTATIONS: usize = 4;
 
 /// One mutation of a scene's text.
 #[derive(Clone, Debug)]
@@ -80,6 +116,14 @@ enum Mutation {
     DropLine(usize),
     /// The `k`-th line repeated.
     RepeatLine(usize),
+    /// The `k`-th list emptied.
+    EmptyList(usize),
+    /// The `k`-th list's first entry written twice.
+    DuplicateEntry(usize),
+    /// The `k`-th field (`name: value`) dropped.
+    DropField(usize),
+    /// The `k`-th field written twice.
+    RepeatField(usize),
 }
 
 fn mutation() -> impl Strategy<Value = Mutation> {
@@ -88,7 +132,110 @@ fn mutation() -> impl Strategy<Value = Mutation> {
         2 => (any::<usize>(), 0..HOSTILE.len()).prop_map(|(k, v)| Mutation::Name(k, v)),
         1 => any::<usize>().prop_map(Mutation::DropLine),
         1 => any::<usize>().prop_map(Mutation::RepeatLine),
+        1 => any::<usize>().prop_map(Mutation::EmptyList),
+        1 => any::<usize>().prop_map(Mutation::DuplicateEntry),
+        2 => any::<usize>().prop_map(Mutation::DropField),
+        1 => any::<usize>().prop_map(Mutation::RepeatField),
     ]
+}
+
+/// Whether byte `k` of `bytes` starts a `//` comment.
+fn comment_at(bytes: &[u8], k: usize) -> bool {
+    bytes[k] == b'/' && bytes.get(k + 1) == Some(&b'/')
+}
+
+/// Where the value that starts at `start` ends: at the first `,` or
+/// closing bracket outside the brackets and strings it opens.
+fn value_end(bytes: &[u8], start: usize) -> usize {
+    let (mut depth, mut k, mut in_string) = (0_i32, start, false);
+    while k < bytes.len() {
+        let c = bytes[k];
+        if in_string {
+            if c == b'\\' {
+                k += 1;
+            } else if c == b'"' {
+                in_string = false;
+            }
+        } else if c == b'"' {
+            in_string = true;
+        } else if comment_at(bytes, k) {
+            while k < bytes.len() && bytes[k] != b'\n' {
+                k += 1;
+            }
+            continue;
+        } else if matches!(c, b'(' | b'[') {
+            depth += 1;
+        } else if matches!(c, b')' | b']') {
+            if depth == 0 {
+                return k;
+            }
+            depth -= 1;
+        } else if c == b',' && depth == 0 {
+            return k;
+        }
+        k += 1;
+    }
+    bytes.len()
+}
+
+/// Byte offsets of the structural characters `wanted` outside comments and
+/// strings.
+fn structural(text: &str, wanted: impl Fn(&[u8], usize) -> bool) -> Vec<usize> {
+    let bytes = text.as_bytes();
+    let (mut found, mut k, mut in_string) = (Vec::new(), 0, false);
+    while k < bytes.len() {
+        let c = bytes[k];
+        if in_string {
+            if c == b'\\' {
+                k += 1;
+            } else if c == b'"' {
+                in_string = false;
+            }
+        } else if c == b'"' {
+            in_string = true;
+        } else if comment_at(bytes, k) {
+            while k < bytes.len() && bytes[k] != b'\n' {
+                k += 1;
+            }
+            continue;
+        } else if wanted(bytes, k) {
+            found.push(k);
+        }
+        k += 1;
+    }
+    found
+}
+
+/// The lists' contents: from after each `[` to its `]`.
+fn list_spans(text: &str) -> Vec<(usize, usize)> {
+    let bytes = text.as_bytes();
+    structural(text, |b, k| b[k] == b'[')
+        .into_iter()
+        .map(|open| {
+            let mut end = value_end(bytes, open + 1);
+            while end < bytes.len() && bytes[end] == b',' {
+                end = value_end(bytes, end + 1);
+            }
+            (open + 1, end)
+        })
+        .collect()
+}
+
+/// The fields: from the start of each `name:` to the end of its value.
+fn field_spans(text: &str) -> Vec<(usize, usize)> {
+    let bytes = text.as_bytes();
+    structural(text, |b, k| {
+        b[k] == b':' && k > 0 && b[k - 1].is_ascii_alphanumeric()
+    })
+    .into_iter()
+    .map(|colon| {
+        let mut start = colon;
+        while start > 0 && (bytes[start - 1].is_ascii_alphanumeric() || bytes[start - 1] == b'_') {
+            start -= 1;
+        }
+        (start, value_end(bytes, colon + 1))
+    })
+    .collect()
 }
 
 /// The byte ranges of the numbers outside comments and strings.
@@ -160,17 +307,18 @@ fn string_spans(text: &str) -> Vec<(usize, usize)> {
 }
 
 fn mutate(text: &str, mutation: &Mutation) -> String {
-    let replace = |spans: Vec<(usize, usize)>, k: usize, with: &str| match spans.len() {
-        0 => text.to_string(),
-        n => {
-            let (a, b) = spans[k % n];
-            format!("{}{with}{}", &text[..a], &text[b..])
-        }
+    let pick = |spans: Vec<(usize, usize)>, k: usize| match spans.len() {
+        0 => None,
+        n => Some(spans[k % n]),
+    };
+    let replace = |span: Option<(usize, usize)>, with: &str| match span {
+        Some((a, b)) => format!("{}{with}{}", &text[..a], &text[b..]),
+        None => text.to_string(),
     };
     let lines: Vec<&str> = text.lines().collect();
     match *mutation {
-        Mutation::Number(k, v) => replace(number_spans(text), k, EXTREMES[v]),
-        Mutation::Name(k, v) => replace(string_spans(text), k, HOSTILE[v]),
+        Mutation::Number(k, v) => replace(pick(number_spans(text), k), EXTREMES[v]),
+        Mutation::Name(k, v) => replace(pick(string_spans(text), k), HOSTILE[v]),
         Mutation::DropLine(k) => {
             let drop = k % lines.len();
             let kept: Vec<&str> = (0..lines.len())
@@ -185,6 +333,32 @@ fn mutate(text: &str, mutation: &Mutation) -> String {
             out.insert(at, lines[at]);
             out.join("\n")
         }
+        Mutation::EmptyList(k) => replace(pick(list_spans(text), k), ""),
+        Mutation::DuplicateEntry(k) => match pick(list_spans(text), k) {
+            Some((a, _)) => {
+                let first = &text[a..value_end(text.as_bytes(), a)];
+                format!("{}{first},{}", &text[..a], &text[a..])
+            }
+            None => text.to_string(),
+        },
+        Mutation::DropField(k) => {
+            let span = pick(field_spans(text), k).map(|(a, b)| {
+                // The comma after the field goes with it.
+                (
+                    a,
+                    if text.as_bytes().get(b) == Some(&b',') {
+                        b + 1
+                    } else {
+                        b
+                    },
+                )
+            });
+            replace(span, "")
+        }
+        Mutation::RepeatField(k) => match pick(field_spans(text), k) {
+            Some((a, b)) => format!("{}{}, {}", &text[..a], &text[a..b], &text[a..]),
+            None => text.to_string(),
+        },
     }
 }
 
@@ -207,7 +381,7 @@ fn try_mutant(text: String) -> Result<(), String> {
     let Ok(mut sim) = Simulation::from_scene(&scene) else {
         return Ok(());
     };
-    for _ in 0..STEPS {
+    for _ in 0..steps_for(points) {
         if sim.step().is_err() {
             return Ok(());
         }
@@ -233,6 +407,16 @@ fn try_mutant(text: String) -> Result<(), String> {
             ));
         }
     }
+    // Every recorded series, as its CSV would be written.
+    for file in sim.series_files() {
+        let csv = sim.series_csv(file).unwrap_or_default();
+        if let Some(row) = csv.lines().skip(1).find(|row| {
+            row.split(',')
+                .any(|cell| cell.parse::<Real>().is_ok_and(|x| !x.is_finite()))
+        }) {
+            return Err(format!("{file} records a non-finite value: {row}"));
+        }
+    }
     Ok(())
 }
 
@@ -256,19 +440,54 @@ fn check_mutant(text: String) -> Result<(), String> {
 
 proptest! {
     #![proptest_config(ProptestConfig {
-        cases: std::env::var("PROPTEST_CASES").ok().and_then(|c| c.parse().ok()).unwrap_or(50_000),
+        cases: std::env::var("PROPTEST_CASES").ok().and_then(|c| c.parse().ok()).unwrap_or(80_000),
         ..ProptestConfig::default()
     })]
 
     #[test]
     fn mutated_scenes_never_panic_hang_or_record_non_finite_values(
         scene in 0..SCENES.len(),
-        mutation in mutation(),
+        mutations in prop::collection::vec(mutation(), 1..=MOST_MUTATIONS),
     ) {
         let path = common::scene_path(SCENES[scene]);
         let text = std::fs::read_to_string(Path::new(&path)).expect("a shipped scene");
-        let mutant = mutate(&text, &mutation);
+        let mutant = mutations.iter().fold(text, |t, m| mutate(&t, m));
         let outcome = check_mutant(mutant.clone());
-        prop_assert!(outcome.is_ok(), "{}: {mutation:?}: {}\n{mutant}", SCENES[scene], outcome.unwrap_err());
+        prop_assert!(outcome.is_ok(), "{}: {mutations:?}: {}\n{mutant}", SCENES[scene], outcome.unwrap_err());
+    }
+}
+
+#[test]
+fn each_mutation_changes_what_it_names() {
+    let text = "S(a: [(n: \"x\", v: 1.5), (n: \"y\", v: 2)], b: (c: 3))";
+    let cases = [
+        (
+            Mutation::Number(0, 4),
+            "S(a: [(n: \"x\", v: 1e300), (n: \"y\", v: 2)], b: (c: 3))",
+        ),
+        (
+            Mutation::Name(1, 0),
+            "S(a: [(n: \"x\", v: 1.5), (n: \"\", v: 2)], b: (c: 3))",
+        ),
+        (Mutation::EmptyList(0), "S(a: [], b: (c: 3))"),
+        (
+            Mutation::DuplicateEntry(0),
+            "S(a: [(n: \"x\", v: 1.5),(n: \"x\", v: 1.5), (n: \"y\", v: 2)], b: (c: 3))",
+        ),
+        (
+            Mutation::DropField(2),
+            "S(a: [(n: \"x\", ), (n: \"y\", v: 2)], b: (c: 3))",
+        ),
+        (
+            Mutation::DropField(6),
+            "S(a: [(n: \"x\", v: 1.5), (n: \"y\", v: 2)], b: ())",
+        ),
+        (
+            Mutation::RepeatField(5),
+            "S(a: [(n: \"x\", v: 1.5), (n: \"y\", v: 2)], b: (c: 3), b: (c: 3))",
+        ),
+    ];
+    for (mutation, expected) in cases {
+        assert_eq!(mutate(text, &mutation), expected, "{mutation:?}");
     }
 }

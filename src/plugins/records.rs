@@ -8,7 +8,7 @@ use crate::io::figure::{Curve, Figure, FigureContext};
 use crate::math::Real;
 use crate::resources::{Clock, EnergyLog, EnergySample, Probe, ProbeSample, Probes, UpdateScheme};
 use crate::rules::file_safe;
-use crate::scene::{PROBE_PLOT_PREFIX, Scene, SceneError};
+use crate::scene::{PROBE_PLOT_PREFIX, Scene, SceneError, SourceLocation};
 use crate::systems::{DiagnosticsStep, record_probes_and_energy};
 use crate::warning::{Warning, WarningKind};
 use bevy_ecs::prelude::*;
@@ -31,7 +31,7 @@ impl MpmPlugin for RecordsPlugin {
         let mut energy = EnergyLog {
             samples: Vec::with_capacity(samples),
         };
-        energy.samples.push(EnergySample::of(
+        let initial = EnergySample::of(
             0.0,
             bodies.iter().filter_map(|e| {
                 Some((world.get::<MaterialPoints>(*e)?, world.get::<Material>(*e)?))
@@ -39,7 +39,16 @@ impl MpmPlugin for RecordsPlugin {
             scene.gravity,
             scene.settings.geometry,
             &mut Vec::new(),
-        ));
+        );
+        if let Some(term) = initial.first_non_finite() {
+            return Err(SceneError::Invalid {
+                location: SourceLocation::default(),
+                message: format!(
+                    "the {term} energy of the initial state is not finite: the bodies' sizes, densities, stiffnesses, initial stress and velocities are out of scale with one another"
+                ),
+            });
+        }
+        energy.samples.push(initial);
         world.insert_resource(probes);
         world.insert_resource(energy);
         setup.record::<Probes>("probes", "probes.csv");

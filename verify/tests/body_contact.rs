@@ -282,7 +282,10 @@ fn bad_body_contacts_are_refused() {
     let mut scene = rings(true, true);
     scene.body_contacts[0].law.friction = -1.0;
     let message = common::refusal(&scene);
-    assert!(message.contains("friction must be ≥ 0"), "{message}");
+    assert!(
+        message.contains("friction: expected a friction coefficient from 0 to 10"),
+        "{message}"
+    );
     let mut scene = rings(true, true);
     scene.bodies[1].contact_radius = Some(scene.grid.cell_size);
     let message = common::refusal(&scene);

@@ -143,7 +143,10 @@ fn bad_blocks_are_refused_and_risky_ones_warned() {
     let mut scene = base.clone();
     scene.blocks[0].contact.friction = -0.1;
     let message = common::refusal(&scene);
-    assert!(message.contains("friction must be ≥ 0"), "{message}");
+    assert!(
+        message.contains("friction: expected a friction coefficient from 0 to 10"),
+        "{message}"
+    );
     // A time step above 2 sqrt(m_p / k_n) and a block sunk into the body.
     let mut scene = base;
     scene.blocks[0].contact.normal_stiffness = 1e11;
