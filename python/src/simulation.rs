@@ -6,18 +6,24 @@ use crate::fields::{Block, Body, block_states, body_snapshot, set_point_column};
 use crate::scene::PyScene;
 use crate::threads::thread_pool;
 use mpdem::Simulation;
+use mpdem::StepError;
 use mpdem::resources::Clock;
+use mpdem::runner::STOP_GRACE;
 use numpy::PyReadonlyArray2;
-use pyo3::exceptions::{PyKeyError, PyValueError};
+use pyo3::exceptions::{PyKeyError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{self, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
 /// A running simulation of a scene. Steps run with the GIL released, on
 /// `threads` worker threads (default: all cores); the results do not
 /// depend on the number. Between steps, Python reads the fields as NumPy
 /// arrays and may set velocities and external forces. Ctrl-C stops a
-/// stepping call between two steps with `KeyboardInterrupt`, the state
-/// left at the last whole step.
+/// stepping call after the step in progress with `KeyboardInterrupt`, the
+/// state left at the last whole step; a step still running half a second
+/// later is cut short, and the simulation then takes no further step.
 #[pyclass(name = "Simulation", module = "mpdem", subclass)]
 pub struct PySimulation {
     sim: Simulation,
@@ -29,6 +35,9 @@ pub struct PySimulation {
     /// The failure a step raised: the state is the failed step's, which
     /// no further step may start from.
     failed: Option<String>,
+    /// Raised when a step runs on [`STOP_GRACE`] after Ctrl-C: the step is
+    /// cut short.
+    cut_short: Arc<AtomicBool>,
 }
 
 #[pymethods]
@@ -47,12 +56,15 @@ impl PySimulation {
             warn(py, &w.to_string())?;
         }
         let bodies = sim.bodies();
+        let cut_short = Arc::new(AtomicBool::new(false));
+        sim.interrupt_steps_on(Arc::clone(&cut_short));
         Ok(Self {
             sim,
             pool,
             bodies,
             warned: 0,
             failed: None,
+            cut_short,
         })
     }
 
@@ -239,7 +251,8 @@ impl PySimulation {
     }
 }
 
-/// How long the steps run between two looks for Ctrl-C (and warnings).
+/// How long the steps run between two hand-backs to Python (warnings,
+/// callbacks, signals).
 const SLICE: Duration = Duration::from_millis(50);
 
 /// Why a run of steps on the pool came back to Python.
@@ -248,7 +261,7 @@ enum Pause {
     Reached,
     /// The callback is due.
     Callback,
-    /// A slice of time has passed: a look for Ctrl-C.
+    /// A slice of time has passed, or Ctrl-C came.
     Slice,
 }
 
@@ -256,8 +269,10 @@ enum Pause {
 /// steps (every `interval` steps, or every step), and stopping when it
 /// returns True; returns whether it ran to `done` or the end. The steps
 /// run on the pool with the GIL released, in slices of up to [`SLICE`]
-/// (one hand-over to the pool per slice, not per step); signals are
-/// checked and warnings issued between slices.
+/// (one hand-over to the pool per slice, not per step); warnings are
+/// issued between slices. The calling thread looks for Ctrl-C while a
+/// slice runs: the steps stop after the one in progress, or cut it short
+/// if it runs on for [`STOP_GRACE`].
 fn advance(
     slf: &Bound<'_, PySimulation>,
     done: impl Fn(&Clock) -> bool + Send + Sync,
@@ -276,42 +291,57 @@ fn advance(
                     "the simulation failed before ({failure}); build a new one to run again"
                 )));
             }
+            if this.sim.cut_short() {
+                return Err(PyRuntimeError::new_err(
+                    "a step was cut short by Ctrl-C, so the state is half updated; build a new simulation to run again",
+                ));
+            }
             let PySimulation {
                 sim,
                 pool,
                 warned,
                 failed,
+                cut_short,
                 ..
             } = &mut *this;
-            let pause = py
-                .detach(|| {
-                    pool.install(|| {
-                        let started = Instant::now();
-                        loop {
-                            let clock = sim.clock();
-                            if done(&clock) || clock.finished() {
-                                return Ok(Pause::Reached);
-                            }
-                            sim.step()?;
-                            let step = sim.clock().step;
-                            if calls_back && interval.is_none_or(|k| step.is_multiple_of(k)) {
-                                return Ok(Pause::Callback);
-                            }
-                            if started.elapsed() >= SLICE {
-                                return Ok(Pause::Slice);
-                            }
-                        }
-                    })
-                })
-                .map_err(|e: mpdem::StepError| {
+            let stop = AtomicBool::new(false);
+            let slice = || {
+                let started = Instant::now();
+                loop {
+                    let clock = sim.clock();
+                    if done(&clock) || clock.finished() {
+                        return Ok(Pause::Reached);
+                    }
+                    if stop.load(Ordering::SeqCst) {
+                        return Ok(Pause::Slice);
+                    }
+                    sim.step()?;
+                    let step = sim.clock().step;
+                    if calls_back && interval.is_none_or(|k| step.is_multiple_of(k)) {
+                        return Ok(Pause::Callback);
+                    }
+                    if started.elapsed() >= SLICE {
+                        return Ok(Pause::Slice);
+                    }
+                }
+            };
+            let (result, signal) = py.detach(|| watch_for_ctrl_c(pool, slice, &stop, cut_short));
+            // A request raised as the step in progress ended whole must not
+            // cut the next call's first step.
+            cut_short.store(false, Ordering::SeqCst);
+            let result = result.inspect_err(|e: &StepError| {
+                if !matches!(e, StepError::Interrupted(_)) {
                     *failed = Some(e.to_string());
-                    from_step_error(py, &e)
-                })?;
+                }
+            });
             for w in &sim.step_warnings()[*warned..] {
                 warn(py, &w.to_string())?;
             }
             *warned = sim.step_warnings().len();
-            pause
+            if let Some(interrupt) = signal {
+                return Err(interrupt);
+            }
+            result.map_err(|e| from_step_error(py, &e))?
         };
         py.check_signals()?;
         match (pause, &callback) {
@@ -322,4 +352,47 @@ fn advance(
             _ => {}
         }
     }
+}
+
+/// How often the calling thread looks for Ctrl-C while a slice runs.
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// Runs `slice` on `pool` while the calling thread (which Python runs its
+/// signal handlers on) looks for Ctrl-C every [`SIGNAL_POLL`]. On Ctrl-C it
+/// raises `stop`, and `cut_short` [`STOP_GRACE`] later if the slice is
+/// still running; it returns the slice's result and the signal's error.
+fn watch_for_ctrl_c(
+    pool: &rayon::ThreadPool,
+    slice: impl FnOnce() -> Result<Pause, StepError> + Send,
+    stop: &AtomicBool,
+    cut_short: &AtomicBool,
+) -> (Result<Pause, StepError>, Option<PyErr>) {
+    let (finished, outcome) = mpsc::channel();
+    let mut signal: Option<PyErr> = None;
+    let mut signalled_at: Option<Instant> = None;
+    let result = pool.in_place_scope(|scope| {
+        scope.spawn(move |_| {
+            let _ = finished.send(slice());
+        });
+        loop {
+            match outcome.recv_timeout(SIGNAL_POLL) {
+                Ok(result) => return Some(result),
+                // The slice panicked: the scope raises its panic.
+                Err(RecvTimeoutError::Disconnected) => return None,
+                Err(RecvTimeoutError::Timeout) => {}
+            }
+            if signal.is_none()
+                && let Err(e) = Python::attach(|py| py.check_signals())
+            {
+                signal = Some(e);
+                signalled_at = Some(Instant::now());
+                stop.store(true, Ordering::SeqCst);
+            }
+            if signalled_at.is_some_and(|at| at.elapsed() >= STOP_GRACE) {
+                cut_short.store(true, Ordering::SeqCst);
+            }
+        }
+    });
+    let result = result.expect("a slice that panicked raises its panic from the scope");
+    (result, signal)
 }

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 from pathlib import Path
 
@@ -31,3 +32,13 @@ def cli() -> Path:
             ["cargo", "build", "--release", "-p", "mpdem-cli"], cwd=ROOT, check=True
         )
     return path
+
+
+@pytest.fixture
+def ctrl_c_raises():
+    """Ctrl-C raising KeyboardInterrupt, as in an interactive session, also
+    when the tests were started with SIGINT ignored (a shell's background
+    job starts so, and Python then installs no handler)."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)

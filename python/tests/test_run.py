@@ -64,7 +64,7 @@ def test_a_failed_run_raises_numerical_failure_and_keeps_the_results(tmp_path):
     assert (tmp_path / "o" / "energy.csv").exists()
 
 
-def test_ctrl_c_stops_a_run_with_its_results_and_checkpoint(tmp_path):
+def test_ctrl_c_stops_a_run_with_its_results_and_checkpoint(tmp_path, ctrl_c_raises):
     scene = shipped("elastic_column", end=100.0)  # a million steps: not done in 0.3 s
     timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
     timer.start()

@@ -93,7 +93,7 @@ def test_a_callback_error_propagates():
     assert sim.step_count == 1
 
 
-def test_ctrl_c_stops_between_steps_with_keyboard_interrupt():
+def test_ctrl_c_stops_between_steps_with_keyboard_interrupt(ctrl_c_raises):
     sim = mpdem.Simulation(shipped("wave_1d"))
     timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
     timer.start()

@@ -60,7 +60,9 @@ class Simulation(_NativeSimulation):
 
     Steps run with the GIL released on ``threads`` worker threads (default:
     all cores); the results do not depend on the number. Ctrl-C stops a
-    stepping call between two steps with ``KeyboardInterrupt``.
+    stepping call after the step in progress with ``KeyboardInterrupt``; a
+    step still running half a second later is cut short, and the
+    simulation then takes no further step.
     """
 
     def set_velocity(self, name: str, velocity: "npt.ArrayLike") -> None:
