@@ -4,6 +4,7 @@
 
 use crate::math::Real;
 use serde::{Deserialize, Deserializer, Serialize, Serializer, de::Error};
+use std::ops::RangeInclusive;
 
 /// A value outside the range a scene field allows; the message says what
 /// was expected and what was given.
@@ -143,6 +144,19 @@ pub fn echo(text: &str) -> String {
     shown
 }
 
+/// `value` if it lies in `range` (NaN never does), else `error(value)`.
+fn within(
+    value: Real,
+    range: RangeInclusive<Real>,
+    error: fn(Real) -> RuleError,
+) -> Result<Real, RuleError> {
+    if range.contains(&value) {
+        Ok(value)
+    } else {
+        Err(error(value))
+    }
+}
+
 /// Lightest density a material or a block may have (kg/m³): below air's
 /// (1.2), below any solid's, liquid's or foam's; a smaller value is a unit
 /// typed wrong, and makes the time step's limits meaningless.
@@ -154,11 +168,7 @@ pub const MAX_DENSITY: Real = 1e9;
 
 /// A density within [`MIN_DENSITY`] and [`MAX_DENSITY`].
 pub fn density(value: Real) -> Result<Real, RuleError> {
-    if (MIN_DENSITY..=MAX_DENSITY).contains(&value) {
-        Ok(value)
-    } else {
-        Err(RuleError::Density(value))
-    }
+    within(value, MIN_DENSITY..=MAX_DENSITY, RuleError::Density)
 }
 
 /// Stiffest elastic modulus a material may have (Pa): ten times
@@ -173,22 +183,14 @@ pub const MIN_MODULUS: Real = 1.0;
 
 /// An elastic modulus within [`MIN_MODULUS`] and [`MAX_MODULUS`].
 pub fn modulus(value: Real) -> Result<Real, RuleError> {
-    if (MIN_MODULUS..=MAX_MODULUS).contains(&value) {
-        Ok(value)
-    } else {
-        Err(RuleError::Modulus(value))
-    }
+    within(value, MIN_MODULUS..=MAX_MODULUS, RuleError::Modulus)
 }
 
 /// A strength (cohesion, tension cut-off) or the size of a load (Pa): ≥ 0
 /// and at most [`MAX_MODULUS`], as no material's strength or load exceeds
 /// its stiffness.
 pub fn stress(value: Real) -> Result<Real, RuleError> {
-    if (0.0..=MAX_MODULUS).contains(&value) {
-        Ok(value)
-    } else {
-        Err(RuleError::Stress(value))
-    }
+    within(value, 0.0..=MAX_MODULUS, RuleError::Stress)
 }
 
 /// Stiffest contact spring a law may have (N/m per metre, or N/m³ by
@@ -247,11 +249,7 @@ pub const MAX_FRICTION: Real = 10.0;
 
 /// A friction coefficient in [0, [`MAX_FRICTION`]].
 pub fn friction(value: Real) -> Result<Real, RuleError> {
-    if (0.0..=MAX_FRICTION).contains(&value) {
-        Ok(value)
-    } else {
-        Err(RuleError::Friction(value))
-    }
+    within(value, 0.0..=MAX_FRICTION, RuleError::Friction)
 }
 
 /// Largest earth pressure coefficient at rest K0: above the passive
@@ -261,11 +259,11 @@ pub const MAX_EARTH_PRESSURE_COEFFICIENT: Real = 10.0;
 
 /// An earth pressure coefficient in [0, [`MAX_EARTH_PRESSURE_COEFFICIENT`]].
 pub fn earth_pressure_coefficient(value: Real) -> Result<Real, RuleError> {
-    if (0.0..=MAX_EARTH_PRESSURE_COEFFICIENT).contains(&value) {
-        Ok(value)
-    } else {
-        Err(RuleError::EarthPressure(value))
-    }
+    within(
+        value,
+        0.0..=MAX_EARTH_PRESSURE_COEFFICIENT,
+        RuleError::EarthPressure,
+    )
 }
 
 /// Largest dynamic viscosity (Pa s): glacier ice's (about 10¹³), the most
@@ -274,11 +272,7 @@ pub const MAX_VISCOSITY: Real = 1e13;
 
 /// A dynamic viscosity in [0, [`MAX_VISCOSITY`]].
 pub fn viscosity(value: Real) -> Result<Real, RuleError> {
-    if (0.0..=MAX_VISCOSITY).contains(&value) {
-        Ok(value)
-    } else {
-        Err(RuleError::Viscosity(value))
-    }
+    within(value, 0.0..=MAX_VISCOSITY, RuleError::Viscosity)
 }
 
 /// A value must be finite and strictly positive.
@@ -311,11 +305,7 @@ pub fn poisson_ratio(value: Real) -> Result<Real, RuleError> {
 
 /// A fraction in [0, 1] (e.g. the PIC fraction β).
 pub fn fraction(value: Real) -> Result<Real, RuleError> {
-    if (0.0..=1.0).contains(&value) {
-        Ok(value)
-    } else {
-        Err(RuleError::NotFraction(value))
-    }
+    within(value, 0.0..=1.0, RuleError::NotFraction)
 }
 
 /// A ratio in (0, 1], e.g. of a kinetic energy to its peak: 0 would
@@ -332,11 +322,7 @@ pub fn ratio(value: Real) -> Result<Real, RuleError> {
 /// node or point up is cancelled and one that slows it down is doubled, as
 /// the paper's settling stages use it.
 pub fn damping(value: Real) -> Result<Real, RuleError> {
-    if (0.0..=1.0).contains(&value) {
-        Ok(value)
-    } else {
-        Err(RuleError::NotDamping(value))
-    }
+    within(value, 0.0..=1.0, RuleError::NotDamping)
 }
 
 /// Largest XPIC order: the alternating binomial sum of eq. 12 loses about

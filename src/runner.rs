@@ -479,16 +479,13 @@ impl Runner {
             };
         report(sim, false, &mut progress);
         let mut failure = None;
-        let mut cut_short = false;
         // The step of the folder's current checkpoint.
         let mut checkpoint_at = (self.options.start == Start::Resume).then_some(first_step);
         while !sim.clock().finished() {
             match sim.step() {
                 Ok(()) => {}
-                Err(StepError::Interrupted(_)) => {
-                    cut_short = true;
-                    break;
-                }
+                // `sim.cut_short()` tells it from here on.
+                Err(StepError::Interrupted(_)) => break,
                 Err(e) => {
                     failure = Some(e.to_string());
                     break;
@@ -523,6 +520,7 @@ impl Runner {
         report(sim, true, &mut progress);
         // A stopped run's checkpoint first: it matters more than the plots.
         let now = sim.clock();
+        let cut_short = sim.cut_short();
         let stopped = failure.is_none() && !now.finished();
         let stop_checkpoint = (stopped && keeps_checkpoint && !cut_short)
             .then(|| sim.write_checkpoint(&checkpoint).map_err(Box::new));

@@ -139,82 +139,70 @@ fn mutation() -> impl Strategy<Value = Mutation> {
     ]
 }
 
-/// Whether byte `k` of `bytes` starts a `//` comment.
-fn comment_at(bytes: &[u8], k: usize) -> bool {
-    bytes[k] == b'/' && bytes.get(k + 1) == Some(&b'/')
-}
-
-/// Where the value that starts at `start` ends: at the first `,` or
-/// closing bracket outside the brackets and strings it opens.
-fn value_end(bytes: &[u8], start: usize) -> usize {
-    let (mut depth, mut k, mut in_string) = (0_i32, start, false);
+/// Per byte of `bytes`, whether it lies outside comments and string
+/// literals (the quotes included).
+fn code_mask(bytes: &[u8]) -> Vec<bool> {
+    let mut code = vec![true; bytes.len()];
+    let (mut k, mut in_string) = (0, false);
     while k < bytes.len() {
         let c = bytes[k];
         if in_string {
+            code[k] = false;
             if c == b'\\' {
+                if let Some(escaped) = code.get_mut(k + 1) {
+                    *escaped = false;
+                }
                 k += 1;
             } else if c == b'"' {
                 in_string = false;
             }
         } else if c == b'"' {
+            code[k] = false;
             in_string = true;
-        } else if comment_at(bytes, k) {
+        } else if c == b'/' && bytes.get(k + 1) == Some(&b'/') {
             while k < bytes.len() && bytes[k] != b'\n' {
+                code[k] = false;
                 k += 1;
             }
             continue;
-        } else if matches!(c, b'(' | b'[') {
-            depth += 1;
-        } else if matches!(c, b')' | b']') {
-            if depth == 0 {
-                return k;
-            }
-            depth -= 1;
-        } else if c == b',' && depth == 0 {
-            return k;
         }
         k += 1;
+    }
+    code
+}
+
+/// Where the value that starts at `start` ends: at the first `,` or
+/// closing bracket outside the brackets it opens (`code` is `bytes`'
+/// [`code_mask`]).
+fn value_end(bytes: &[u8], code: &[bool], start: usize) -> usize {
+    let mut depth = 0_i32;
+    for k in (start..bytes.len()).filter(|&k| code[k]) {
+        match bytes[k] {
+            b'(' | b'[' => depth += 1,
+            b')' | b']' if depth == 0 => return k,
+            b')' | b']' => depth -= 1,
+            b',' if depth == 0 => return k,
+            _ => {}
+        }
     }
     bytes.len()
 }
 
-/// Byte offsets of the structural characters `wanted` outside comments and
-/// strings.
-fn structural(text: &str, wanted: impl Fn(&[u8], usize) -> bool) -> Vec<usize> {
-    let bytes = text.as_bytes();
-    let (mut found, mut k, mut in_string) = (Vec::new(), 0, false);
-    while k < bytes.len() {
-        let c = bytes[k];
-        if in_string {
-            if c == b'\\' {
-                k += 1;
-            } else if c == b'"' {
-                in_string = false;
-            }
-        } else if c == b'"' {
-            in_string = true;
-        } else if comment_at(bytes, k) {
-            while k < bytes.len() && bytes[k] != b'\n' {
-                k += 1;
-            }
-            continue;
-        } else if wanted(bytes, k) {
-            found.push(k);
-        }
-        k += 1;
-    }
-    found
+/// Byte offsets `k` outside comments and strings where `wanted(k)` holds.
+fn structural(bytes: &[u8], code: &[bool], wanted: impl Fn(usize) -> bool) -> Vec<usize> {
+    (0..bytes.len()).filter(|&k| code[k] && wanted(k)).collect()
 }
 
 /// The lists' contents: from after each `[` to its `]`.
 fn list_spans(text: &str) -> Vec<(usize, usize)> {
     let bytes = text.as_bytes();
-    structural(text, |b, k| b[k] == b'[')
+    let code = code_mask(bytes);
+    structural(bytes, &code, |k| bytes[k] == b'[')
         .into_iter()
         .map(|open| {
-            let mut end = value_end(bytes, open + 1);
+            let mut end = value_end(bytes, &code, open + 1);
             while end < bytes.len() && bytes[end] == b',' {
-                end = value_end(bytes, end + 1);
+                end = value_end(bytes, &code, end + 1);
             }
             (open + 1, end)
         })
@@ -224,8 +212,9 @@ fn list_spans(text: &str) -> Vec<(usize, usize)> {
 /// The fields: from the start of each `name:` to the end of its value.
 fn field_spans(text: &str) -> Vec<(usize, usize)> {
     let bytes = text.as_bytes();
-    structural(text, |b, k| {
-        b[k] == b':' && k > 0 && b[k - 1].is_ascii_alphanumeric()
+    let code = code_mask(bytes);
+    structural(bytes, &code, |k| {
+        bytes[k] == b':' && k > 0 && bytes[k - 1].is_ascii_alphanumeric()
     })
     .into_iter()
     .map(|colon| {
@@ -233,7 +222,7 @@ fn field_spans(text: &str) -> Vec<(usize, usize)> {
         while start > 0 && (bytes[start - 1].is_ascii_alphanumeric() || bytes[start - 1] == b'_') {
             start -= 1;
         }
-        (start, value_end(bytes, colon + 1))
+        (start, value_end(bytes, &code, colon + 1))
     })
     .collect()
 }
@@ -241,23 +230,13 @@ fn field_spans(text: &str) -> Vec<(usize, usize)> {
 /// The byte ranges of the numbers outside comments and strings.
 fn number_spans(text: &str) -> Vec<(usize, usize)> {
     let bytes = text.as_bytes();
+    let code = code_mask(bytes);
     let mut spans = Vec::new();
-    let (mut k, mut in_string) = (0, false);
+    let mut k = 0;
     while k < bytes.len() {
         let c = bytes[k];
-        if in_string {
-            if c == b'\\' {
-                k += 1;
-            } else if c == b'"' {
-                in_string = false;
-            }
-        } else if c == b'"' {
-            in_string = true;
-        } else if c == b'/' && bytes.get(k + 1) == Some(&b'/') {
-            while k < bytes.len() && bytes[k] != b'\n' {
-                k += 1;
-            }
-        } else if (c.is_ascii_digit() || c == b'-')
+        if code[k]
+            && (c.is_ascii_digit() || c == b'-')
             && !(k > 0 && (bytes[k - 1].is_ascii_alphanumeric() || bytes[k - 1] == b'_'))
         {
             let start = k;
@@ -336,7 +315,8 @@ fn mutate(text: &str, mutation: &Mutation) -> String {
         Mutation::EmptyList(k) => replace(pick(list_spans(text), k), ""),
         Mutation::DuplicateEntry(k) => match pick(list_spans(text), k) {
             Some((a, _)) => {
-                let first = &text[a..value_end(text.as_bytes(), a)];
+                let bytes = text.as_bytes();
+                let first = &text[a..value_end(bytes, &code_mask(bytes), a)];
                 format!("{}{first},{}", &text[..a], &text[a..])
             }
             None => text.to_string(),

@@ -18,7 +18,7 @@ const SIGNAL_REPEAT_WINDOW: Duration = Duration::from_secs(1);
 pub struct StopRequest {
     /// Raised by the first signal: the run stops after its step.
     pub stop: Arc<AtomicBool>,
-    /// Raised [`STOP_GRACE`] the first signal: the step in progress
+    /// Raised [`STOP_GRACE`] after the first signal: the step in progress
     /// is cut short.
     pub cut_short: Arc<AtomicBool>,
 }

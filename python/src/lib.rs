@@ -3,6 +3,7 @@
 //! write what the CLI writes. The package's `mpdem/__init__.py` re-exports
 //! it and adds the series as NumPy record arrays and pandas frames.
 
+mod ctrl_c;
 mod errors;
 mod fields;
 mod key_path;

@@ -1,18 +1,15 @@
 //! `mpdem.run`: a scene's run written to an output folder, as the CLI's
 //! `mpdem run` writes it.
 
+use crate::ctrl_c::watch_for_ctrl_c;
 use crate::errors::{from_run_error, warn};
 use crate::scene::PyScene;
 use crate::threads::thread_pool;
-use mpdem::runner::{RunOptions, Runner, STOP_GRACE, Start};
+use mpdem::runner::{RunOptions, Runner, Start};
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
-
-/// How often a run looks for Ctrl-C.
-const SIGNAL_POLL: Duration = Duration::from_millis(50);
+use std::sync::atomic::AtomicBool;
 
 /// What a finished run reached.
 #[pyclass(module = "mpdem", frozen, get_all)]
@@ -91,37 +88,8 @@ pub fn run(
     let stop = AtomicBool::new(false);
     let cut_short = Arc::new(AtomicBool::new(false));
     runner.interrupt_steps_on(Arc::clone(&cut_short));
-    let finished = AtomicBool::new(false);
-    let mut interrupt: Option<PyErr> = None;
-    let mut interrupted_at: Option<Instant> = None;
-    let result = py.detach(|| {
-        std::thread::scope(|scope| {
-            let stepping = scope.spawn(|| {
-                let result = pool.install(|| runner.run(&stop, |_| {}));
-                finished.store(true, Ordering::SeqCst);
-                result
-            });
-            // The calling (main) thread looks for Ctrl-C while the run
-            // steps on the pool: Python runs its signal handlers there only.
-            while !finished.load(Ordering::SeqCst) {
-                std::thread::sleep(SIGNAL_POLL);
-                if interrupt.is_none()
-                    && let Err(e) = Python::attach(|py| py.check_signals())
-                {
-                    interrupt = Some(e);
-                    interrupted_at = Some(Instant::now());
-                    stop.store(true, Ordering::SeqCst);
-                }
-                // A step still running after the grace is cut short.
-                if interrupted_at.is_some_and(|at| at.elapsed() >= STOP_GRACE) {
-                    cut_short.store(true, Ordering::SeqCst);
-                }
-            }
-            stepping.join()
-        })
-    });
-    // A panic of the run is raised as PyO3's PanicException.
-    let result = result.unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+    let (result, interrupt) =
+        py.detach(|| watch_for_ctrl_c(&pool, || runner.run(&stop, |_| {}), &stop, &cut_short));
     for w in runner.stage_warnings() {
         warn(py, &w.to_string())?;
     }

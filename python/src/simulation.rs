@@ -1,6 +1,7 @@
 //! `mpdem.Simulation`: a scene's simulation stepped from Python, its
 //! fields read as NumPy arrays between steps.
 
+use crate::ctrl_c::watch_for_ctrl_c;
 use crate::errors::{NumericalFailure, from_scene_error, from_step_error, warn};
 use crate::fields::{Block, Body, block_states, body_snapshot, set_point_column};
 use crate::scene::PyScene;
@@ -8,13 +9,11 @@ use crate::threads::thread_pool;
 use mpdem::Simulation;
 use mpdem::StepError;
 use mpdem::resources::Clock;
-use mpdem::runner::STOP_GRACE;
 use numpy::PyReadonlyArray2;
 use pyo3::exceptions::{PyKeyError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{self, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
 /// A running simulation of a scene. Steps run with the GIL released, on
@@ -35,8 +34,8 @@ pub struct PySimulation {
     /// The failure a step raised: the state is the failed step's, which
     /// no further step may start from.
     failed: Option<String>,
-    /// Raised when a step runs on [`STOP_GRACE`] after Ctrl-C: the step is
-    /// cut short.
+    /// Raised when a step runs on [`mpdem::runner::STOP_GRACE`] after
+    /// Ctrl-C: the step is cut short.
     cut_short: Arc<AtomicBool>,
 }
 
@@ -272,7 +271,7 @@ enum Pause {
 /// (one hand-over to the pool per slice, not per step); warnings are
 /// issued between slices. The calling thread looks for Ctrl-C while a
 /// slice runs: the steps stop after the one in progress, or cut it short
-/// if it runs on for [`STOP_GRACE`].
+/// if it runs on for [`mpdem::runner::STOP_GRACE`].
 fn advance(
     slf: &Bound<'_, PySimulation>,
     done: impl Fn(&Clock) -> bool + Send + Sync,
@@ -352,47 +351,4 @@ fn advance(
             _ => {}
         }
     }
-}
-
-/// How often the calling thread looks for Ctrl-C while a slice runs.
-const SIGNAL_POLL: Duration = Duration::from_millis(50);
-
-/// Runs `slice` on `pool` while the calling thread (which Python runs its
-/// signal handlers on) looks for Ctrl-C every [`SIGNAL_POLL`]. On Ctrl-C it
-/// raises `stop`, and `cut_short` [`STOP_GRACE`] later if the slice is
-/// still running; it returns the slice's result and the signal's error.
-fn watch_for_ctrl_c(
-    pool: &rayon::ThreadPool,
-    slice: impl FnOnce() -> Result<Pause, StepError> + Send,
-    stop: &AtomicBool,
-    cut_short: &AtomicBool,
-) -> (Result<Pause, StepError>, Option<PyErr>) {
-    let (finished, outcome) = mpsc::channel();
-    let mut signal: Option<PyErr> = None;
-    let mut signalled_at: Option<Instant> = None;
-    let result = pool.in_place_scope(|scope| {
-        scope.spawn(move |_| {
-            let _ = finished.send(slice());
-        });
-        loop {
-            match outcome.recv_timeout(SIGNAL_POLL) {
-                Ok(result) => return Some(result),
-                // The slice panicked: the scope raises its panic.
-                Err(RecvTimeoutError::Disconnected) => return None,
-                Err(RecvTimeoutError::Timeout) => {}
-            }
-            if signal.is_none()
-                && let Err(e) = Python::attach(|py| py.check_signals())
-            {
-                signal = Some(e);
-                signalled_at = Some(Instant::now());
-                stop.store(true, Ordering::SeqCst);
-            }
-            if signalled_at.is_some_and(|at| at.elapsed() >= STOP_GRACE) {
-                cut_short.store(true, Ordering::SeqCst);
-            }
-        }
-    });
-    let result = result.expect("a slice that panicked raises its panic from the scope");
-    (result, signal)
 }
