@@ -1,120 +1,164 @@
 //! Deterministic parallel point-to-grid scatter (DESIGN.md section 6).
 //!
-//! Points are sorted by the grid row of their stencil ([`ScatterOrder`]) and
-//! cut, in that order, into fixed-size chunks of [`CHUNK_POINTS`], whatever
-//! the number of threads. Each chunk scatters into its own small dense patch
-//! covering the chunk's stencils; the patches are then added into the layer
-//! row by row, each row visiting the patches in chunk order. Every nodal sum
-//! is therefore formed in one fixed order, so the result is bit-identical for
-//! any thread count. Sorting keeps the patches small however far the points
-//! have moved from the order they were stored in: a chunk spans a few rows
-//! of the body, not the whole body. Patch buffers are kept between steps:
-//! after the first steps a scatter allocates nothing.
+//! The grid is cut into fixed tiles of [`TILE_CELLS`] (16 × 16) stencil
+//! base nodes, counted from the grid's first node. A point belongs
+//! to the tile of its stencil's base node ([`ScatterOrder`]); each tile's
+//! points, in stored order, scatter into the tile's own small dense patch;
+//! the patches are then added into the layer row by row, each row visiting
+//! the patches in tile order (row of tiles, then column). Every nodal sum is
+//! therefore formed in one fixed order that depends on the points' places
+//! and stored order only: not on the number of threads, nor on how the
+//! points are shared out, so that a domain cut along tile edges sums the
+//! same. The patches stay small however far the points have moved from the
+//! order they were stored in. Patch buffers are kept between steps: after
+//! the first steps a scatter allocates nothing.
 
 use crate::math::{DVec2, Real};
 use crate::node_rect::NodeRect;
 use crate::shape_functions::{STENCIL_WIDTH, Stencil};
 use rayon::prelude::*;
-use std::ops::AddAssign;
+use std::ops::{AddAssign, Range};
 
-/// Points per scatter chunk. Fixed (not derived from the thread count) so that
-/// results do not depend on it; large enough to amortise the patch overhead,
-/// small enough to give both cores many chunks at 10⁴ points.
-pub const CHUNK_POINTS: usize = 1024;
+/// Stencil base nodes of a scatter tile along x and y: fixed (its sums do
+/// not depend on the thread count). 16 × 16 cells hold 1024 points at 2 × 2
+/// points per cell, enough to amortise a patch (18 × 18 nodes for the widest
+/// stencil), and are fine enough to cut a domain into strips.
+pub const TILE_CELLS: [usize; 2] = [16, 16];
+
+/// Tiles per parallel task, at least: a task per tile would cost more in
+/// scheduling than a small tile's scatter.
+const TILES_PER_TASK: usize = 4;
+
+/// Points per task of the parallel pass that finds each point's tile.
+const KEY_CHUNK: usize = 4096;
 
 /// The order in which the scatters of a step visit a body's points: by the
-/// grid row of their stencil's base node, and within a row in stored order
-/// (a stable counting sort: the order follows from the positions and the
-/// stored order, never from the number of threads).
-///
-/// A body's points are stored in the order they were generated, row by row,
-/// so chunks of stored points start as thin strips. Once a flow has mixed
-/// them (a dam break, a collapsing column), a chunk of stored points can be
-/// spread over the whole body, and its patch, the box around its stencils,
-/// with it: in a dam break the patches grew to 1.4 times the nodes the points
-/// write. Sorted chunks span a few rows of the body at any time.
+/// tile of their stencil's base node, tiles row by row, and within a tile in
+/// stored order (a stable counting sort: the order follows from the
+/// positions and the stored order, never from the number of threads).
 #[derive(Clone, Debug, Default)]
 pub struct ScatterOrder {
-    /// Point indices, sorted by row.
+    /// Point indices, sorted by tile.
     points: Vec<u32>,
-    /// Whether `points` is 0, 1, 2, …: the points were stored in row order.
-    stored_order: bool,
-    /// Points per row of the window, then each row's next place in `points`.
-    rows: Vec<u32>,
+    /// Per point, its tile among the window's, row by row.
+    keys: Vec<u32>,
+    /// Per tile of the window: its points, then its next place in `points`.
+    tiles: Vec<u32>,
+    /// The ranges of `points` of the tiles that hold points, in tile order.
+    chunks: Vec<Range<usize>>,
     /// The layer's window the stencils lie in.
     window: NodeRect,
-    /// Per chunk of [`CHUNK_POINTS`] points in this order, the nodes its
-    /// stencils cover: the same for every scatter of the step.
+    /// The tiles of the whole grid.
+    grid_tiles: usize,
+    /// Per chunk, the nodes its stencils cover: the same for every scatter
+    /// of the step.
     patches: Vec<NodeRect>,
 }
 
+/// The tiles, along x and y, that the base nodes of `window` fall in.
+fn tile_span(window: NodeRect) -> [Range<usize>; 2] {
+    [0, 1].map(|d| {
+        window.start[d] / TILE_CELLS[d]
+            ..window.end[d]
+                .max(window.start[d] + 1)
+                .div_ceil(TILE_CELLS[d])
+    })
+}
+
 impl ScatterOrder {
-    /// Sorts the points by the row of their stencil's base node, given as
+    /// Sorts the points by the tile of their stencil's base node, given as
     /// `bases` (one per point, [`Stencil::base`]); every stencil lies in
-    /// `window` (a layer's window covers its points' stencils). Points
-    /// already stored in row order, as in a body that has not flowed, cost
-    /// one counting pass.
-    pub fn sort_by_row(&mut self, bases: &[[u32; 2]], window: NodeRect) {
+    /// `window` (a layer's window covers its points' stencils), of a grid
+    /// of `grid_nodes` nodes along x and y.
+    pub fn sort_by_tile(&mut self, bases: &[[u32; 2]], window: NodeRect, grid_nodes: [usize; 2]) {
+        self.grid_tiles = tile_span(NodeRect::whole(grid_nodes))
+            .iter()
+            .map(|t| t.len())
+            .product();
+        // Room for every tile of the grid, made once: a window that grows,
+        // or a tile that fills for the first time, does not grow a list.
+        let tiles = self.grid_tiles;
+        self.tiles.reserve(tiles.saturating_sub(self.tiles.len()));
+        self.chunks.reserve(tiles.saturating_sub(self.chunks.len()));
+        self.patches
+            .reserve(tiles.saturating_sub(self.patches.len()));
         self.sort_points(bases, window);
-        let chunks = self.points.len().div_ceil(CHUNK_POINTS);
-        self.patches.resize(chunks, NodeRect::default());
+        self.patches.resize(self.chunks.len(), NodeRect::default());
         self.patches
             .par_iter_mut()
-            .zip(self.points.par_chunks(CHUNK_POINTS))
+            .zip(self.chunks.par_iter())
+            .with_min_len(TILES_PER_TASK)
             .for_each(|(patch, chunk)| {
-                *patch = covered_nodes(chunk.iter().map(|&p| bases[p as usize]));
+                let points = &self.points[chunk.clone()];
+                *patch = covered_nodes(points.iter().map(|&p| bases[p as usize]));
             });
     }
 
-    /// The counting sort of [`Self::sort_by_row`]. It takes the points in
-    /// runs of one row, as they mostly come: a count or a place kept in a
-    /// register over a run, not stored and reloaded at every point.
+    /// The counting sort of [`Self::sort_by_tile`]. Points rarely change
+    /// tiles from one step to the next: when none did, the order stands.
     fn sort_points(&mut self, bases: &[[u32; 2]], window: NodeRect) {
+        let [across, up] = tile_span(window);
+        let same_tiles = self.keys.len() == bases.len()
+            && tile_span(self.window) == [across.clone(), up.clone()];
         self.window = window;
-        let low = window.start[1] as u32;
-        self.rows.clear();
-        self.rows.resize(window.end[1] - window.start[1], 0);
-        let mut in_row_order = true;
-        let mut previous = 0;
-        for run in bases.chunk_by(|a, b| a[1] == b[1]) {
-            let base_row = run[0][1];
-            let row = base_row.checked_sub(low).map(|r| r as usize);
-            let Some(count) = row.and_then(|r| self.rows.get_mut(r)) else {
-                panic!(
-                    "a stencil at row {base_row} lies outside the layer's stored nodes {window:?}"
-                );
-            };
-            *count += run.len() as u32;
-            in_row_order &= base_row >= previous;
-            previous = base_row;
+        let columns = across.len() as u32;
+        let (first_column, first_row) = (across.start as u32, up.start as u32);
+        let (low, high) = (window.start.map(|k| k as u32), window.end.map(|k| k as u32));
+        self.keys.resize(bases.len(), 0);
+        let (outside, moved) = self
+            .keys
+            .par_chunks_mut(KEY_CHUNK)
+            .zip(bases.par_chunks(KEY_CHUNK))
+            .map(|(keys, bases)| {
+                let (mut outside, mut moved) = (false, false);
+                for (key, &base) in keys.iter_mut().zip(bases) {
+                    outside |= base[0] < low[0]
+                        || base[0] >= high[0]
+                        || base[1] < low[1]
+                        || base[1] >= high[1];
+                    // Constant divisors: shifts, not divisions, per point.
+                    let k = (base[1] / TILE_CELLS[1] as u32)
+                        .wrapping_sub(first_row)
+                        .wrapping_mul(columns)
+                        .wrapping_add((base[0] / TILE_CELLS[0] as u32).wrapping_sub(first_column));
+                    moved |= *key != k;
+                    *key = k;
+                }
+                (outside, moved)
+            })
+            .reduce(|| (false, false), |a, b| (a.0 | b.0, a.1 | b.1));
+        let changed = moved || !same_tiles;
+        if outside {
+            let stray = bases.iter().find(|b| {
+                !(window.start[0]..window.end[0]).contains(&(b[0] as usize))
+                    || !(window.start[1]..window.end[1]).contains(&(b[1] as usize))
+            });
+            panic!("a stencil at {stray:?} lies outside the layer's stored nodes {window:?}");
         }
-        if in_row_order {
-            if !self.stored_order || self.points.len() != bases.len() {
-                self.points.clear();
-                self.points.extend(0..bases.len() as u32);
-                self.stored_order = true;
-            }
+        if !changed {
             return;
         }
+        self.tiles.clear();
+        self.tiles.resize(across.len() * up.len(), 0);
+        for &key in &self.keys {
+            self.tiles[key as usize] += 1;
+        }
+        self.chunks.clear();
         let mut first = 0;
-        for row in &mut self.rows {
-            let count = *row;
-            *row = first;
-            first += count;
+        for count in &mut self.tiles {
+            let n = *count as usize;
+            if n > 0 {
+                self.chunks.push(first..first + n);
+            }
+            *count = first as u32;
+            first += n;
         }
         self.points.resize(bases.len(), 0);
-        let mut start = 0;
-        for run in bases.chunk_by(|a, b| a[1] == b[1]) {
-            let place = &mut self.rows[(run[0][1] - low) as usize];
-            let end = start + run.len() as u32;
-            let places = *place as usize..(*place + run.len() as u32) as usize;
-            for (slot, p) in self.points[places].iter_mut().zip(start..end) {
-                *slot = p;
-            }
-            *place += run.len() as u32;
-            start = end;
+        for (p, &key) in self.keys.iter().enumerate() {
+            let place = &mut self.tiles[key as usize];
+            self.points[*place as usize] = p as u32;
+            *place += 1;
         }
-        self.stored_order = false;
     }
 
     /// The point indices in scatter order.
@@ -123,28 +167,27 @@ impl ScatterOrder {
     }
 }
 
-/// A dense rectangle of nodes receiving one chunk's contributions.
-#[derive(Clone, Debug, Default)]
-struct Patch<T> {
-    /// Grid index of the lower-left node.
-    origin: [usize; 2],
-    /// Nodes per row.
-    width: usize,
-    /// Number of rows.
-    height: usize,
-    /// Row-major values.
-    values: Vec<T>,
-}
-
-/// Reusable patches for one scattered quantity of one body.
+/// Reusable patches for one scattered quantity of one body: a slot of
+/// [`PATCH_NODES`] values per tile holding points, slot k for the k-th, each
+/// row-major over the nodes its tile's stencils cover.
 #[derive(Clone, Debug, Default)]
 pub struct Scatter<T> {
-    patches: Vec<Patch<T>>,
+    /// The slots, in one buffer made once with room for every tile of the
+    /// grid: room never written takes address space, not memory (the
+    /// system gives a page only when it is first written), and a tile that
+    /// fills for the first time finds its slot ready.
+    values: Vec<T>,
+    /// The nodes each slot of the last scatter covers.
+    rects: Vec<NodeRect>,
 }
 
+/// The most nodes a patch covers: a tile's base nodes and its stencils' reach.
+const PATCH_NODES: usize =
+    (TILE_CELLS[0] + STENCIL_WIDTH - 1) * (TILE_CELLS[1] + STENCIL_WIDTH - 1);
+
 impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
-    /// Scatters every point into the patches, in chunks of `order` (sorted
-    /// from these `stencils`): for point p, `per_point(p)` computes what the
+    /// Scatters every point into the patches, a chunk per tile of `order`
+    /// (sorted from these `stencils`): for point p, `per_point(p)` computes what the
     /// point carries once, then `per_node(&carried, S_ip, G_ip, [a, b])`
     /// gives its contribution to stencil node (a, b) (see
     /// [`Stencil::scatter`]).
@@ -155,43 +198,59 @@ impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
         per_point: impl Fn(usize) -> P + Sync,
         per_node: impl Fn(&P, Real, DVec2, [usize; 2]) -> T + Sync,
     ) {
-        let widest = order.window.width();
         let covered = &order.patches;
-        let order = order.points();
+        let chunks = &order.chunks;
+        let slots = order.grid_tiles.max(covered.len());
+        let points = order.points();
         assert_eq!(
-            order.len(),
+            points.len(),
             stencils.len(),
             "the scatter order was sorted for other stencils"
         );
-        self.patches.resize_with(covered.len(), Patch::default);
-        self.patches
-            .par_iter_mut()
-            .zip(order.par_chunks(CHUNK_POINTS))
+        if self.values.capacity() < slots * PATCH_NODES {
+            self.values = Vec::with_capacity(slots * PATCH_NODES);
+            self.rects = Vec::with_capacity(slots);
+        }
+        self.values
+            .resize(covered.len() * PATCH_NODES, T::default());
+        self.rects.clear();
+        self.rects.extend_from_slice(covered);
+        self.values
+            .par_chunks_mut(PATCH_NODES)
+            .zip(chunks.par_iter())
             .zip(covered)
-            .for_each(|((patch, chunk), &nodes)| {
-                patch.cover(nodes, widest);
-                let origin = [patch.origin[0] as u32, patch.origin[1] as u32];
-                for &p in chunk {
+            .with_min_len(TILES_PER_TASK)
+            .for_each(|((slot, chunk), nodes)| {
+                let width = nodes.width();
+                let values = &mut slot[..width * nodes.height()];
+                values.fill(T::default());
+                let origin = nodes.start.map(|k| k as u32);
+                for &p in &points[chunk.clone()] {
                     let carried = per_point(p as usize);
-                    stencils[p as usize].scatter(
-                        &mut patch.values,
-                        origin,
-                        patch.width,
-                        |value, w, g, k| *value += per_node(&carried, w, g, k),
-                    );
+                    stencils[p as usize].scatter(values, origin, width, |value, w, g, k| {
+                        *value += per_node(&carried, w, g, k)
+                    });
                 }
             });
+    }
+
+    /// The slots of the last scatter: each tile's nodes and values.
+    fn patches(&self) -> impl Iterator<Item = (NodeRect, &[T])> {
+        self.rects
+            .iter()
+            .zip(self.values.chunks(PATCH_NODES))
+            .map(|(rect, slot)| (*rect, &slot[..rect.width() * rect.height()]))
     }
 
     /// Nodes in all patches of the last scatter (what zeroing and merging
     /// them costs, against nine per point for the scatter itself).
     #[cfg(test)]
     fn patch_nodes(&self) -> usize {
-        self.patches.iter().map(|p| p.values.len()).sum()
+        self.patches().map(|(_, values)| values.len()).sum()
     }
 
     /// Adds the scattered values into `nodes`, a row-major field stored
-    /// over `window`, with `merge`, rows in parallel, patches in chunk order
+    /// over `window`, with `merge`, rows in parallel, patches in tile order
     /// per row. Every patch must lie inside the window (a layer's window
     /// covers its active nodes, which cover its points' stencils).
     pub fn add_into<N: Send>(
@@ -200,28 +259,32 @@ impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
         window: NodeRect,
         merge: impl Fn(&mut N, T) + Sync,
     ) {
-        for patch in &self.patches {
-            let rect = NodeRect {
-                start: patch.origin,
-                end: [
-                    patch.origin[0] + patch.width,
-                    patch.origin[1] + patch.height,
-                ],
-            };
+        for (rect, _) in self.patches() {
             assert!(
                 window.covers(rect),
                 "a scatter patch {rect:?} reaches past the layer's stored nodes {window:?}"
             );
         }
         window.rows_mut(window, nodes).for_each(|(j, row)| {
-            for patch in &self.patches {
-                if j < patch.origin[1] || j >= patch.origin[1] + patch.height {
+            // The patches are in tile order, so those that can reach row j,
+            // from the tiles of the rows j − 2 to j, lie in one run.
+            let tile_row = |rect: &NodeRect| rect.start[1] / TILE_CELLS[1];
+            let first = self.rects.partition_point(|r| {
+                tile_row(r) < j.saturating_sub(STENCIL_WIDTH - 1) / TILE_CELLS[1]
+            });
+            let last = self
+                .rects
+                .partition_point(|r| tile_row(r) <= j / TILE_CELLS[1]);
+            let slots = self.values.chunks(PATCH_NODES);
+            for (rect, slot) in self.rects[first..last].iter().zip(slots.skip(first)) {
+                if j < rect.start[1] || j >= rect.end[1] {
                     continue;
                 }
-                let start = (j - patch.origin[1]) * patch.width;
-                let values = &patch.values[start..start + patch.width];
-                let first = patch.origin[0] - window.start[0];
-                for (node, value) in row[first..].iter_mut().zip(values) {
+                let values = &slot[..rect.width() * rect.height()];
+                let width = rect.width();
+                let start = (j - rect.start[1]) * width;
+                let first = rect.start[0] - window.start[0];
+                for (node, value) in row[first..].iter_mut().zip(&values[start..start + width]) {
                     merge(node, *value);
                 }
             }
@@ -243,28 +306,6 @@ fn covered_nodes(bases: impl Iterator<Item = [u32; 2]>) -> NodeRect {
     NodeRect {
         start: lo.map(|k| k as usize),
         end: hi.map(|k| k as usize),
-    }
-}
-
-impl<T: Copy + Default> Patch<T> {
-    /// Resizes and zeroes the patch to cover `nodes`. A patch that outgrows
-    /// its buffer gets room for rows `widest` nodes long (the layer window's
-    /// width, which no patch exceeds): as a body spreads sideways its
-    /// patches widen, and they should not reallocate at each widening. Room
-    /// never written (a contact group's window can be much wider than one
-    /// body) takes address space, not memory: the system gives a page only
-    /// when it is first written.
-    fn cover(&mut self, nodes: NodeRect, widest: usize) {
-        self.origin = nodes.start;
-        self.width = nodes.width();
-        self.height = nodes.height();
-        self.values.clear();
-        let needed = self.width * self.height;
-        if self.values.capacity() < needed {
-            self.values
-                .reserve_exact(widest.max(self.width) * self.height);
-        }
-        self.values.resize(needed, T::default());
     }
 }
 
@@ -305,7 +346,7 @@ mod tests {
         // momentum in x and y, its mass in z.
         let scatter_field = |points: &[DVec2], stencils: &[Stencil]| {
             let mut order = ScatterOrder::default();
-            order.sort_by_row(&bases_of(stencils), NodeRect::whole(nodes));
+            order.sort_by_tile(&bases_of(stencils), NodeRect::whole(nodes), nodes);
             let mut scatter = Scatter::<DVec3>::default();
             scatter.scatter(
                 stencils,
@@ -410,7 +451,7 @@ mod tests {
                 .unwrap();
             pool.install(|| {
                 let mut order = ScatterOrder::default();
-                order.sort_by_row(&bases_of(&stencils), NodeRect::whole(nodes));
+                order.sort_by_tile(&bases_of(&stencils), NodeRect::whole(nodes), nodes);
                 let mut scatter = Scatter::<Real>::default();
                 scatter.scatter(&stencils, &order, |p| 1.0 + p as Real, |m, w, _, _| m * w);
                 let mut grid = vec![0.0; nodes[0] * nodes[1]];
@@ -465,36 +506,40 @@ mod tests {
         let mixed: Vec<Stencil> = (0..n).map(|k| ordered[(7919 * k) % n]).collect();
         let patch_nodes = |stencils: &[Stencil]| {
             let mut order = ScatterOrder::default();
-            order.sort_by_row(&bases_of(stencils), NodeRect::whole(grid.nodes));
+            order.sort_by_tile(&bases_of(stencils), NodeRect::whole(grid.nodes), grid.nodes);
             let mut scatter = Scatter::<Real>::default();
             scatter.scatter(stencils, &order, |_| 1.0, |m, w, _, _| m * w);
             scatter.patch_nodes()
         };
         let (sorted, unsorted) = (patch_nodes(&ordered), patch_nodes(&mixed));
-        // Each chunk of 1024 points spans ⌈1024 / 200⌉ + 1 = 7 rows of one
-        // point per cell, so its patch has at most 7 + 2 rows of 202 nodes.
+        // One patch per tile of 16 × 16 base nodes, each at most
+        // (16 + 3) × (16 + 3) nodes, whatever the stored order.
+        let tiles = (columns + 1).div_ceil(TILE_CELLS[0]) * (rows + 1).div_ceil(TILE_CELLS[1]);
         assert_eq!(
             sorted, unsorted,
             "{sorted} nodes in order, {unsorted} mixed"
         );
-        assert!(
-            sorted <= n.div_ceil(CHUNK_POINTS) * 9 * (columns + 2),
-            "{sorted}"
-        );
+        let widest = (TILE_CELLS[0] + STENCIL_WIDTH) * (TILE_CELLS[1] + STENCIL_WIDTH);
+        assert!(sorted <= tiles * widest, "{sorted} nodes in {tiles} tiles");
     }
 
-    /// The order is a permutation of the points, stable by row, through
-    /// mixed and ordered steps, a shorter body and a window that does not
-    /// start at row 0.
+    /// The order is a permutation of the points, by tile (tiles row by row,
+    /// counted from the grid's first node) and stable within a tile,
+    /// through successive sorts, a shorter body and a window that does not
+    /// start at the grid's first node.
     #[test]
-    fn the_order_is_a_stable_permutation_by_row() {
-        let at_row = |row: u32| Stencil {
-            base: [4, row],
+    fn the_order_is_a_stable_permutation_by_tile() {
+        let at = |base: [u32; 2]| Stencil {
+            base,
             ..Stencil::default()
         };
         let window = NodeRect {
-            start: [0, 10],
-            end: [20, 20],
+            start: [5, 10],
+            end: [60, 50],
+        };
+        let tile = |s: &Stencil| {
+            let t = TILE_CELLS.map(|t| t as u32);
+            (s.base[1] / t[1], s.base[0] / t[0])
         };
         let check = |order: &ScatterOrder, stencils: &[Stencil]| {
             let points = order.points();
@@ -505,20 +550,30 @@ mod tests {
             assert!(seen.iter().all(|&s| s), "not every point: {points:?}");
             for pair in points.windows(2) {
                 let (a, b) = (pair[0] as usize, pair[1] as usize);
-                let (ra, rb) = (stencils[a].base[1], stencils[b].base[1]);
-                assert!(ra < rb || (ra == rb && a < b), "{points:?}");
+                let (ta, tb) = (tile(&stencils[a]), tile(&stencils[b]));
+                assert!(ta < tb || (ta == tb && a < b), "{points:?}");
             }
+            let chunks: usize = order.chunks.iter().map(|c| c.len()).sum();
+            assert_eq!(chunks, stencils.len());
         };
         let mut order = ScatterOrder::default();
-        for rows in [
-            vec![13, 11, 13, 12, 11, 17],
-            vec![11, 11, 12, 13, 13, 17],
-            vec![12, 11, 19],
-            vec![10, 10],
+        for bases in [
+            vec![
+                [40, 13],
+                [6, 11],
+                [17, 13],
+                [15, 12],
+                [59, 49],
+                [16, 11],
+                [5, 17],
+            ],
+            vec![[20, 11], [21, 11], [20, 12], [50, 33], [50, 32]],
+            vec![[12, 31], [11, 31]],
+            vec![[5, 10]],
             vec![],
         ] {
-            let stencils: Vec<Stencil> = rows.into_iter().map(at_row).collect();
-            order.sort_by_row(&bases_of(&stencils), window);
+            let stencils: Vec<Stencil> = bases.into_iter().map(at).collect();
+            order.sort_by_tile(&bases_of(&stencils), window, window.end);
             check(&order, &stencils);
         }
     }
@@ -534,6 +589,6 @@ mod tests {
             base: [4, 9],
             ..Stencil::default()
         };
-        ScatterOrder::default().sort_by_row(&[stray.base], window);
+        ScatterOrder::default().sort_by_tile(&[stray.base], window, window.end);
     }
 }

@@ -96,7 +96,7 @@ pub fn particle_to_grid(
             });
         }
         let window = layer.window();
-        order.sort_by_row(stencil_bases, window);
+        order.sort_by_tile(stencil_bases, window, layer.grid_nodes());
         let force_on = |p: usize| {
             let contact = if body_force {
                 points.contact_force[p]

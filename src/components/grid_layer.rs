@@ -116,6 +116,11 @@ impl GridLayer {
         &mut self.nodes
     }
 
+    /// Nodes of the whole grid along x and y.
+    pub fn grid_nodes(&self) -> [usize; 2] {
+        self.grid_nodes
+    }
+
     /// The rectangle of nodes stored.
     pub fn window(&self) -> NodeRect {
         self.window

@@ -3,10 +3,13 @@
 use crate::geometry::Geometry;
 use crate::materials::ConstitutiveModel;
 use crate::math::{DMat2, DVec2, Real, SymTensor};
-use crate::scatter::CHUNK_POINTS;
 use bevy_ecs::prelude::Component;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
+
+/// Points per chunk of the reductions over a body's points: fixed, not
+/// derived from the thread count, so that results do not depend on it.
+const CHUNK_POINTS: usize = 1024;
 
 /// The initial state of one point, used to fill the columns.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -200,7 +203,7 @@ impl MaterialPoints {
     /// change of gravity's potential since the points were placed,
     /// −Σ m g · (x − X), and the inelastic work the materials dissipated
     /// (J/m).
-    /// Points are summed in fixed chunks of `CHUNK_POINTS` (see the scatter) in parallel and
+    /// Points are summed in fixed chunks of `CHUNK_POINTS` in parallel and
     /// the chunk sums added in order, so the result never depends on the
     /// thread count.
     /// `chunk_sums` is scratch space, reused so that recording allocates nothing.

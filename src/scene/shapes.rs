@@ -250,11 +250,35 @@ impl Shape {
         let n = points_per_cell as Real;
         let first = ((lo - origin) / h).floor();
         let last = ((hi - origin) / h).ceil();
+        // The points are stored tile by tile (the scatter's tiles of stencil
+        // base nodes), row by row within a tile, so that the scatter visits
+        // a body that has not flowed in the order it is stored. A point's
+        // base node is floor(s − ½) in cells (every kernel's, away from the
+        // grid's edges); it grows with the point's row and column, so each
+        // tile holds a run of consecutive point rows and columns.
+        let runs = |first: i64, last: i64, tile: usize| {
+            let lines: Vec<(i64, u32)> = (first..last)
+                .flat_map(|cell| (0..points_per_cell).map(move |sub| (cell, sub)))
+                .collect();
+            let tile_of = |&(cell, sub): &(i64, u32)| {
+                (cell - i64::from(2 * sub + 1 < points_per_cell)).div_euclid(tile as i64)
+            };
+            let mut runs: Vec<Vec<(i64, u32)>> = Vec::new();
+            for pair in lines.chunk_by(|a, b| tile_of(a) == tile_of(b)) {
+                runs.push(pair.to_vec());
+            }
+            runs
+        };
+        let [tile_x, tile_y] = crate::scatter::TILE_CELLS;
+        let (columns, rows) = (
+            runs(first.x as i64, last.x as i64, tile_x),
+            runs(first.y as i64, last.y as i64, tile_y),
+        );
         let mut points = Vec::new();
-        for j in first.y as i64..last.y as i64 {
-            for b in 0..points_per_cell {
-                for i in first.x as i64..last.x as i64 {
-                    for a in 0..points_per_cell {
+        for tile_rows in &rows {
+            for tile_columns in &columns {
+                for &(j, b) in tile_rows {
+                    for &(i, a) in tile_columns {
                         let local = DVec2::new((a as Real + 0.5) / n, (b as Real + 0.5) / n);
                         let p = origin + (DVec2::new(i as Real, j as Real) + local) * h;
                         if self.contains(p) {
