@@ -13,6 +13,7 @@ pub mod checkpoint;
 pub mod components;
 pub mod contact;
 pub mod deposit;
+pub mod distributed;
 pub(crate) mod files;
 pub mod geometry;
 pub mod io;

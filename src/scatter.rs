@@ -165,6 +165,22 @@ impl ScatterOrder {
     pub fn points(&self) -> &[u32] {
         &self.points
     }
+
+    /// The number of tiles of the whole grid.
+    pub fn grid_tiles(&self) -> usize {
+        self.grid_tiles
+    }
+
+    /// The tiles (row, column among the grid's) that hold points, in tile
+    /// order.
+    pub fn tiles(&self) -> impl Iterator<Item = [usize; 2]> + '_ {
+        self.patches.iter().map(tile_of)
+    }
+
+    /// The point indices of each tile that holds points, in tile order.
+    pub fn tile_points(&self) -> impl IndexedParallelIterator<Item = &[u32]> {
+        self.chunks.par_iter().map(|c| &self.points[c.clone()])
+    }
 }
 
 /// Reusable patches for one scattered quantity of one body: a slot of
@@ -252,9 +268,14 @@ impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
     /// Adds the scattered values into `nodes`, a row-major field stored
     /// over `window`, with `merge`, rows in parallel, patches in tile order
     /// per row. Every patch must lie inside the window (a layer's window
-    /// covers its active nodes, which cover its points' stencils).
-    pub fn add_into<N: Send>(
+    /// covers its active nodes, which cover its points' stencils). The
+    /// patches of other processes' tiles (`foreign`, in tile order) are
+    /// taken in their tiles' places, so that each nodal sum is formed as
+    /// one process holding every tile forms it; a foreign patch adds only
+    /// to the nodes of the window.
+    pub fn add_into_with<N: Send>(
         &self,
+        foreign: &[SharedPatch<T>],
         nodes: &mut [N],
         window: NodeRect,
         merge: impl Fn(&mut N, T) + Sync,
@@ -268,27 +289,104 @@ impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
         window.rows_mut(window, nodes).for_each(|(j, row)| {
             // The patches are in tile order, so those that can reach row j,
             // from the tiles of the rows j − 2 to j, lie in one run.
-            let tile_row = |rect: &NodeRect| rect.start[1] / TILE_CELLS[1];
             let first = self.rects.partition_point(|r| {
-                tile_row(r) < j.saturating_sub(STENCIL_WIDTH - 1) / TILE_CELLS[1]
+                tile_of(r)[0] < j.saturating_sub(STENCIL_WIDTH - 1) / TILE_CELLS[1]
             });
             let last = self
                 .rects
-                .partition_point(|r| tile_row(r) <= j / TILE_CELLS[1]);
-            let slots = self.values.chunks(PATCH_NODES);
-            for (rect, slot) in self.rects[first..last].iter().zip(slots.skip(first)) {
-                if j < rect.start[1] || j >= rect.end[1] {
-                    continue;
-                }
-                let values = &slot[..rect.width() * rect.height()];
-                let width = rect.width();
-                let start = (j - rect.start[1]) * width;
-                let first = rect.start[0] - window.start[0];
-                for (node, value) in row[first..].iter_mut().zip(&values[start..start + width]) {
-                    merge(node, *value);
+                .partition_point(|r| tile_of(r)[0] <= j / TILE_CELLS[1]);
+            let slots = self.values.chunks(PATCH_NODES).skip(first);
+            let mut own = self.rects[first..last].iter().zip(slots).peekable();
+            let mut others = foreign
+                .iter()
+                .filter(|f| (f.rect.start[1]..f.rect.end[1]).contains(&j))
+                .peekable();
+            loop {
+                let take_own = match (own.peek(), others.peek()) {
+                    (Some((rect, _)), Some(other)) => tile_of(rect) < other.tile,
+                    (Some(_), None) => true,
+                    (None, Some(_)) => false,
+                    (None, None) => break,
+                };
+                if take_own {
+                    let (rect, slot) = own.next().expect("peeked");
+                    add_row(row, j, window, *rect, slot, &merge);
+                } else {
+                    let other = others.next().expect("peeked");
+                    add_row(row, j, window, other.rect, &other.values, &merge);
                 }
             }
         });
+    }
+
+    /// The values of the last scatter's patches on the node columns
+    /// `columns`, with their tiles: what a process that shares those nodes
+    /// takes into its [`Self::add_into_with`].
+    pub fn shared(&self, columns: Range<usize>) -> Vec<SharedPatch<T>> {
+        self.patches()
+            .filter_map(|(rect, values)| {
+                let part = NodeRect {
+                    start: [rect.start[0].max(columns.start), rect.start[1]],
+                    end: [rect.end[0].min(columns.end), rect.end[1]],
+                };
+                (part.start[0] < part.end[0]).then(|| SharedPatch {
+                    tile: tile_of(&rect),
+                    rect: part,
+                    values: values
+                        .chunks(rect.width())
+                        .flat_map(|row| {
+                            &row[part.start[0] - rect.start[0]..part.end[0] - rect.start[0]]
+                        })
+                        .copied()
+                        .collect(),
+                })
+            })
+            .collect()
+    }
+}
+
+/// Part of a tile's patch that another process needs: the values on the
+/// nodes `rect` (row-major), of the tile at `tile` (row, column).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SharedPatch<T> {
+    /// The tile's row and column among the grid's tiles.
+    pub tile: [usize; 2],
+    /// The nodes.
+    pub rect: NodeRect,
+    /// The values, row-major over `rect`.
+    pub values: Vec<T>,
+}
+
+/// The tile (row, column) of a patch: the tile of its first base node.
+fn tile_of(rect: &NodeRect) -> [usize; 2] {
+    [rect.start[1] / TILE_CELLS[1], rect.start[0] / TILE_CELLS[0]]
+}
+
+/// Merges row `j` of a patch over `rect` into `row`, row `j` of a field
+/// stored over `window`, at the nodes both cover.
+fn add_row<N, T: Copy>(
+    row: &mut [N],
+    j: usize,
+    window: NodeRect,
+    rect: NodeRect,
+    values: &[T],
+    merge: &impl Fn(&mut N, T),
+) {
+    if j < rect.start[1] || j >= rect.end[1] {
+        return;
+    }
+    let width = rect.width();
+    let values = &values[(j - rect.start[1]) * width..][..width];
+    let (from, to) = (
+        rect.start[0].max(window.start[0]),
+        rect.end[0].min(window.end[0]),
+    );
+    if from >= to {
+        return;
+    }
+    let nodes = &mut row[from - window.start[0]..to - window.start[0]];
+    for (node, value) in nodes.iter_mut().zip(&values[from - rect.start[0]..]) {
+        merge(node, *value);
     }
 }
 
@@ -358,7 +456,7 @@ mod tests {
                 },
             );
             let mut sums = vec![DVec3::ZERO; nodes[0] * nodes[1]];
-            scatter.add_into(&mut sums, NodeRect::whole(nodes), |n, s| *n += s);
+            scatter.add_into_with(&[], &mut sums, NodeRect::whole(nodes), |n, s| *n += s);
             sums
         };
         let positions: Vec<DVec2> = (0..300)
@@ -455,7 +553,7 @@ mod tests {
                 let mut scatter = Scatter::<Real>::default();
                 scatter.scatter(&stencils, &order, |p| 1.0 + p as Real, |m, w, _, _| m * w);
                 let mut grid = vec![0.0; nodes[0] * nodes[1]];
-                scatter.add_into(&mut grid, NodeRect::whole(nodes), |n, v| *n += v);
+                scatter.add_into_with(&[], &mut grid, NodeRect::whole(nodes), |n, v| *n += v);
                 grid
             })
         };

@@ -2,8 +2,10 @@
 
 use crate::components::{
     BlockContacts, BlockId, BodyIndex, BodyName, DampedEnergy, Material, MaterialPoints,
-    PartReactions, PointEnergies, Pose, Reaction, RigidVelocity, sort_into_scene_order,
+    PartReactions, PointEnergies, Pose, Reaction, RigidVelocity, TransferScratch,
+    sort_into_scene_order,
 };
+use crate::distributed::{Domain, PointIds, add_tile_sums, record_probes};
 use crate::math::DVec2;
 use crate::parallel::MIN_POINTS_PER_TASK;
 use crate::resources::{
@@ -182,8 +184,10 @@ pub fn record_probes_and_energy(
         &MaterialPoints,
         &Material,
         &DampedEnergy,
+        &TransferScratch,
     )>,
     blocks: Query<(Entity, &BlockId, &BlockContacts)>,
+    (domain, ids): (Option<NonSend<Domain>>, Query<&PointIds>),
 ) {
     if diagnostics.failure.is_some() || !sampling.due(&clock) {
         return;
@@ -191,13 +195,22 @@ pub fn record_probes_and_energy(
     let (order, sums, block_order) = &mut *scratch;
     sort_into_scene_order(order, bodies.iter().map(|(e, i, ..)| (*i, e)));
     let ordered = || order.iter().filter_map(|(_, e)| bodies.get(*e).ok());
-    let mut sample = EnergySample::of(
-        clock.time,
-        ordered().map(|b| (b.2, b.3)),
-        gravity.0,
-        settings.geometry,
-        sums,
-    );
+    // Each body's points are summed tile by tile in the step's scatter
+    // order, tiles in order: the same sums on any number of processes.
+    let mut points_energy = PointEnergies::default();
+    for (_, _, points, material, _, scratch) in ordered() {
+        let model = material.model.as_model();
+        let (g, geometry) = (gravity.0, settings.geometry);
+        let order = &scratch.order;
+        points_energy = points_energy
+            + if order.points().len() == points.len() {
+                points.energies_of_groups(model, g, geometry, order.tile_points(), sums);
+                add_tile_sums(domain.as_deref(), order.tiles(), sums)
+            } else {
+                points.energies(model, g, geometry, sums)
+            };
+    }
+    let mut sample = EnergySample::of_points(clock.time, points_energy);
     sample.damped = ordered().map(|b| b.4.0).sum();
     sort_into_scene_order(block_order, blocks.iter().map(|(e, id, ..)| (id.index, e)));
     let (mut springs, mut tangential) = body_contacts.map_or((0.0, 0.0), |c| c.spring_energies());
@@ -225,7 +238,12 @@ pub fn record_probes_and_energy(
         });
         return;
     }
-    probes.record(clock.time, |entity| bodies.get(entity).ok().map(|b| b.2));
+    match domain.as_deref() {
+        None => probes.record(clock.time, |entity| bodies.get(entity).ok().map(|b| b.2)),
+        Some(domain) => record_probes(domain, &mut probes, clock.time, |entity| {
+            Some((bodies.get(entity).ok()?.2, ids.get(entity).ok()?))
+        }),
+    }
     energy.samples.push(sample);
 }
 

@@ -4,6 +4,7 @@
 use crate::components::{
     DampedEnergy, GridLayer, Material, MaterialPoints, RemapScratch, StepTravel, TransferScratch,
 };
+use crate::distributed::{Domain, add_tile_sums, foreign_patches};
 use crate::math::{DMat2, DVec2, Real, local_damping, outer};
 use crate::parallel::MIN_POINTS_PER_TASK;
 use crate::resources::{Clock, Grid, PositionUpdate, Settings, SharedLayers};
@@ -11,6 +12,10 @@ use crate::scatter::{Scatter, ScatterOrder};
 use crate::shape_functions::Stencil;
 use bevy_ecs::prelude::*;
 use rayon::prelude::*;
+
+/// The points' stencils and scatter order, and the domain of a distributed
+/// run (the halo of each scatter).
+type Transfer<'a> = (&'a [Stencil], &'a ScatterOrder, Option<&'a Domain>);
 
 /// With v^n = Σ S_ip v_i^n, v^{n+1} = Σ S_ip v_i^{n+1} interpolated at x^n
 /// and the point's acceleration a_p Δt = v^{n+1} − v^n, less particle
@@ -52,6 +57,7 @@ pub fn grid_to_particle(
     clock: Res<Clock>,
     mut shared: ResMut<SharedLayers>,
     mut bodies: Query<G2pData>,
+    domain: Option<NonSend<Domain>>,
 ) {
     let walls = grid.wall_bounds();
     let TransferOptions {
@@ -79,13 +85,14 @@ pub fn grid_to_particle(
             stencils,
             order: scatter_order,
             damped: taken,
+            damped_by_tile,
             undamped,
             held_back,
             remap,
             ..
         } = &mut *scratch;
         if order >= 1 {
-            let transfer = (&stencils[..], &*scatter_order);
+            let transfer = (&stencils[..], &*scatter_order, domain.as_deref());
             xpic_velocities(order, &points.mass, layer, transfer, remap);
         }
         let window = layer.window();
@@ -184,7 +191,7 @@ pub fn grid_to_particle(
             })
             .reduce(|| 0.0, Real::max);
         if remaps {
-            let transfer = (&stencils[..], &*scatter_order);
+            let transfer = (&stencils[..], &*scatter_order, domain.as_deref());
             let affine = affine.then(|| AffineMap {
                 gradient: affine_gradient,
                 cell: grid.cell_size,
@@ -195,8 +202,18 @@ pub fn grid_to_particle(
             scatter_momentum(mass, velocity, affine, layer, transfer, momentum, current);
         }
         if takes {
-            // In point order, on one thread: the same sum for any thread count.
-            damped.0 += taken.iter().sum::<Real>();
+            // Tile by tile in the step's scatter order, tiles in order: the
+            // same sum for any number of threads or processes.
+            damped_by_tile.reserve(
+                scatter_order
+                    .grid_tiles()
+                    .saturating_sub(damped_by_tile.len()),
+            );
+            scatter_order
+                .tile_points()
+                .map(|points| points.iter().map(|&p| taken[p as usize]).sum::<Real>())
+                .collect_into_vec(damped_by_tile);
+            damped.0 += add_tile_sums(domain.as_deref(), scatter_order.tiles(), damped_by_tile);
         }
     }
     if remaps {
@@ -444,7 +461,7 @@ fn map_to_nodes(
     velocity: &[DVec2],
     affine: Option<AffineMap>,
     layer: &GridLayer,
-    transfer: (&[Stencil], &ScatterOrder),
+    transfer: Transfer,
     momentum: &mut Scatter<DVec2>,
     into: &mut Vec<DVec2>,
 ) {
@@ -460,7 +477,7 @@ fn scatter_momentum(
     velocity: &[DVec2],
     affine: Option<AffineMap>,
     layer: &GridLayer,
-    (stencils, scatter_order): (&[Stencil], &ScatterOrder),
+    (stencils, scatter_order, domain): Transfer,
     momentum: &mut Scatter<DVec2>,
     into: &mut Vec<DVec2>,
 ) {
@@ -486,7 +503,8 @@ fn scatter_momentum(
     active
         .rows_mut(window, into)
         .for_each(|(_, row)| row.fill(DVec2::ZERO));
-    momentum.add_into(into, window, |u, mv| *u += mv);
+    let foreign = foreign_patches(domain, momentum);
+    momentum.add_into_with(&foreign, into, window, |u, mv| *u += mv);
 }
 
 /// Turns the nodal momentum in `field` into velocity on the layer's active
@@ -514,7 +532,7 @@ fn xpic_velocities(
     order: u32,
     mass: &[Real],
     layer: &GridLayer,
-    (stencils, scatter_order): (&[Stencil], &ScatterOrder),
+    (stencils, scatter_order, domain): Transfer,
     xpic: &mut RemapScratch,
 ) {
     let RemapScratch {
@@ -558,7 +576,7 @@ fn xpic_velocities(
             point_velocity,
             None,
             layer,
-            (stencils, scatter_order),
+            (stencils, scatter_order, domain),
             momentum,
             current,
         );

@@ -1,6 +1,7 @@
 //! Algorithm 1, lines 14–15: nodal forces and the momentum update (eqs. 7a, 8a, 8b).
 
 use crate::components::{GridLayer, MaterialPoints, TransferScratch};
+use crate::distributed::{Domain, foreign_patches};
 use crate::math::{DVec2, Real, local_damping};
 use crate::resources::{Clock, Geometry, Settings, SharedLayers};
 use bevy_ecs::prelude::*;
@@ -23,6 +24,7 @@ pub fn solve_nodal_momentum(
     clock: Res<Clock>,
     mut shared: ResMut<SharedLayers>,
     mut bodies: Query<(&MaterialPoints, &mut GridLayer, &mut TransferScratch)>,
+    domain: Option<NonSend<Domain>>,
 ) {
     let (dt, alpha) = (clock.dt, settings.grid_damping);
     for (points, mut layer, mut scratch) in &mut bodies {
@@ -54,7 +56,10 @@ pub fn solve_nodal_momentum(
             ),
         }
         let window = layer.window();
-        internal_force.add_into(layer.nodes_mut(), window, |n, f| n.internal_force += f);
+        let foreign = foreign_patches(domain.as_deref(), internal_force);
+        internal_force.add_into_with(&foreign, layer.nodes_mut(), window, |n, f| {
+            n.internal_force += f
+        });
     }
     shared.share(
         |entity, f| {

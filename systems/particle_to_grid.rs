@@ -7,6 +7,7 @@ use crate::components::{
     TransferScratch,
 };
 use crate::contact::ForceApplication;
+use crate::distributed::{Domain, foreign_patches};
 use crate::math::DVec2;
 use crate::resources::{
     Clock, ContactSettings, Diagnostics, FailureSite, Gravity, Grid, NumericalFailure, Settings,
@@ -57,6 +58,7 @@ pub fn particle_to_grid(
     mut diagnostics: ResMut<Diagnostics>,
     mut shared: ResMut<SharedLayers>,
     mut bodies: Query<P2gData>,
+    domain: Option<NonSend<Domain>>,
 ) {
     let nodes = grid.nodes();
     let stencil_grid = grid.stencil_grid();
@@ -136,7 +138,8 @@ pub fn particle_to_grid(
                 },
             );
         }
-        mass_momentum.add_into(layer.nodes_mut(), window, |n, t| {
+        let foreign = foreign_patches(domain.as_deref(), mass_momentum);
+        mass_momentum.add_into_with(&foreign, layer.nodes_mut(), window, |n, t| {
             n.mass += t.mass;
             n.momentum += t.momentum;
             n.external_force += t.external_force;

@@ -31,7 +31,7 @@ pub struct NewPoint {
 }
 
 /// Energies of a set of points (J/m), see [`MaterialPoints::energies`].
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct PointEnergies {
     /// Σ ½ m |V|².
     pub kinetic: Real,
@@ -183,6 +183,91 @@ impl MaterialPoints {
         self.contact_force.push(DVec2::ZERO);
     }
 
+    /// The points at `indices`, in that order, with every column.
+    pub fn select(&self, indices: &[usize]) -> Self {
+        let Self {
+            position,
+            initial_position,
+            velocity,
+            mass,
+            initial_volume,
+            volume,
+            deformation_gradient,
+            velocity_gradient,
+            affine_gradient,
+            stress,
+            strain,
+            inelastic_work,
+            plastic_strain,
+            external_force,
+            half_size,
+            contact_radius,
+            contact_force,
+        } = self;
+        fn pick<T: Copy>(column: &[T], indices: &[usize]) -> Vec<T> {
+            indices.iter().map(|&p| column[p]).collect()
+        }
+        Self {
+            position: pick(position, indices),
+            initial_position: pick(initial_position, indices),
+            velocity: pick(velocity, indices),
+            mass: pick(mass, indices),
+            initial_volume: pick(initial_volume, indices),
+            volume: pick(volume, indices),
+            deformation_gradient: pick(deformation_gradient, indices),
+            velocity_gradient: pick(velocity_gradient, indices),
+            affine_gradient: pick(affine_gradient, indices),
+            stress: pick(stress, indices),
+            strain: pick(strain, indices),
+            inelastic_work: pick(inelastic_work, indices),
+            plastic_strain: pick(plastic_strain, indices),
+            external_force: pick(external_force, indices),
+            half_size: pick(half_size, indices),
+            contact_radius: pick(contact_radius, indices),
+            contact_force: pick(contact_force, indices),
+        }
+    }
+
+    /// Appends every point of `other`, with every column.
+    pub fn append(&mut self, other: &Self) {
+        let Self {
+            position,
+            initial_position,
+            velocity,
+            mass,
+            initial_volume,
+            volume,
+            deformation_gradient,
+            velocity_gradient,
+            affine_gradient,
+            stress,
+            strain,
+            inelastic_work,
+            plastic_strain,
+            external_force,
+            half_size,
+            contact_radius,
+            contact_force,
+        } = other;
+        self.position.extend(position);
+        self.initial_position.extend(initial_position);
+        self.velocity.extend(velocity);
+        self.mass.extend(mass);
+        self.initial_volume.extend(initial_volume);
+        self.volume.extend(volume);
+        self.deformation_gradient.extend(deformation_gradient);
+        self.velocity_gradient.extend(velocity_gradient);
+        self.affine_gradient.extend(affine_gradient);
+        self.stress.extend(stress);
+        self.strain.extend(strain);
+        self.inelastic_work.extend(inelastic_work);
+        self.plastic_strain.extend(plastic_strain);
+        self.external_force.extend(external_force);
+        self.half_size.extend(half_size);
+        self.contact_radius.extend(contact_radius);
+        self.contact_force.extend(contact_force);
+    }
+
     /// The radius at which point `p`'s hoop terms are taken in axisymmetry:
     /// `hoop_radius` of its position and domain.
     pub fn hoop_radius(&self, p: usize) -> Real {
@@ -214,32 +299,61 @@ impl MaterialPoints {
         geometry: Geometry,
         chunk_sums: &mut Vec<PointEnergies>,
     ) -> PointEnergies {
+        (0..self.len().div_ceil(CHUNK_POINTS))
+            .into_par_iter()
+            .map(|c| {
+                let range = c * CHUNK_POINTS..((c + 1) * CHUNK_POINTS).min(self.len());
+                self.sum_energies(model, gravity, geometry, range)
+            })
+            .collect_into_vec(chunk_sums);
+        chunk_sums
+            .iter()
+            .fold(PointEnergies::default(), |sum, chunk| sum + *chunk)
+    }
+
+    /// The energies of [`Self::energies`] of each group of `groups` (point
+    /// indices), summed in order within a group, groups in parallel.
+    pub(crate) fn energies_of_groups<'a>(
+        &self,
+        model: &dyn ConstitutiveModel,
+        gravity: DVec2,
+        geometry: Geometry,
+        groups: impl IndexedParallelIterator<Item = &'a [u32]>,
+        sums: &mut Vec<PointEnergies>,
+    ) {
+        groups
+            .map(|group| {
+                let points = group.iter().map(|&p| p as usize);
+                self.sum_energies(model, gravity, geometry, points)
+            })
+            .collect_into_vec(sums);
+    }
+
+    /// The energies of `points`, summed in their order.
+    fn sum_energies(
+        &self,
+        model: &dyn ConstitutiveModel,
+        gravity: DVec2,
+        geometry: Geometry,
+        points: impl Iterator<Item = usize>,
+    ) -> PointEnergies {
         // F_zz: 1 in plane strain, the hoop stretch exp(ε_θθ) in
         // axisymmetry (as the stress update takes it).
         let f_zz = |p: usize| match geometry {
             Geometry::PlaneStrain => 1.0,
             Geometry::Axisymmetric => self.strain[p].zz.exp(),
         };
-        (0..self.len().div_ceil(CHUNK_POINTS))
-            .into_par_iter()
-            .map(|c| {
-                let range = c * CHUNK_POINTS..((c + 1) * CHUNK_POINTS).min(self.len());
-                range.fold(PointEnergies::default(), |sum, p| PointEnergies {
-                    kinetic: sum.kinetic + 0.5 * self.mass[p] * self.velocity[p].length_squared(),
-                    strain: sum.strain
-                        + model.stored_energy_density(
-                            &self.stress[p],
-                            &self.deformation_gradient[p],
-                            f_zz(p),
-                        ) * self.volume[p],
-                    gravity: sum.gravity - self.mass[p] * gravity.dot(self.displacement(p)),
-                    inelastic: sum.inelastic + self.inelastic_work[p],
-                })
-            })
-            .collect_into_vec(chunk_sums);
-        chunk_sums
-            .iter()
-            .fold(PointEnergies::default(), |sum, chunk| sum + *chunk)
+        points.fold(PointEnergies::default(), |sum, p| PointEnergies {
+            kinetic: sum.kinetic + 0.5 * self.mass[p] * self.velocity[p].length_squared(),
+            strain: sum.strain
+                + model.stored_energy_density(
+                    &self.stress[p],
+                    &self.deformation_gradient[p],
+                    f_zz(p),
+                ) * self.volume[p],
+            gravity: sum.gravity - self.mass[p] * gravity.dot(self.displacement(p)),
+            inelastic: sum.inelastic + self.inelastic_work[p],
+        })
     }
 
     /// Total linear momentum Σ m_p V_p.

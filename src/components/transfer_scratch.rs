@@ -56,6 +56,9 @@ pub struct TransferScratch {
     /// Each point's energy taken by this step's velocity update (see
     /// [`crate::components::DampedEnergy`]), sized on first use.
     pub damped: Vec<Real>,
+    /// The energy of `damped` summed per tile of the scatter order, with
+    /// room for every tile of the grid.
+    pub damped_by_tile: Vec<Real>,
     /// Work space of G2P's maps from the points back to the nodes, sized
     /// on first use.
     pub remap: RemapScratch,

@@ -37,6 +37,20 @@ pub struct ProbeSample {
     pub stress: SymTensor,
 }
 
+impl ProbeSample {
+    /// Probe `probe`'s sample at `time`, of point `p` of `points`.
+    pub fn of(probe: usize, time: Real, points: &MaterialPoints, p: usize) -> Self {
+        Self {
+            probe,
+            time,
+            position: points.position[p],
+            displacement: points.displacement(p),
+            velocity: points.velocity[p],
+            stress: points.stress[p],
+        }
+    }
+}
+
 /// When the records sample the run (`output.probe_interval`): every
 /// `every` steps, at step 0 and at the run's last step. Every record
 /// samples on these steps, so that a checkpoint's records agree (see
@@ -77,15 +91,8 @@ impl Probes {
             let Some(points) = points_of(probe.body) else {
                 continue;
             };
-            let p = probe.point;
-            self.samples.push(ProbeSample {
-                probe: k,
-                time,
-                position: points.position[p],
-                displacement: points.displacement(p),
-                velocity: points.velocity[p],
-                stress: points.stress[p],
-            });
+            self.samples
+                .push(ProbeSample::of(k, time, points, probe.point));
         }
     }
 
@@ -172,6 +179,12 @@ impl EnergySample {
         let sum = bodies.fold(PointEnergies::default(), |sum, (points, material)| {
             sum + points.energies(material.model.as_model(), gravity, geometry, scratch)
         });
+        Self::of_points(time, sum)
+    }
+
+    /// The sample at `time` of the points' energies `sum`, without
+    /// contacts, loads and damping (see [`Self::of`]).
+    pub fn of_points(time: Real, sum: PointEnergies) -> Self {
         Self {
             time,
             kinetic: sum.kinetic,

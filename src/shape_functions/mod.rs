@@ -162,6 +162,17 @@ pub(crate) struct StencilGrid {
     pub walls: [[bool; 2]; 2],
 }
 
+impl StencilGrid {
+    /// The column of the base node of every kernel's stencil at `x`, as
+    /// [`Stencil::new`] finds it: floor(s − ½) in cells, kept off the
+    /// grid's edges (a point off the grid takes the nearest column).
+    pub(crate) fn base_column(&self, x: Real) -> u32 {
+        let s = (x - self.origin.x) * self.inv_cell_size;
+        let first = if s >= 0.0 { (s + 0.5) as i64 - 1 } else { 0 };
+        first.clamp(0, self.nodes[0] as i64 - 3) as u32
+    }
+}
+
 /// The 3 × 3 nodes a point maps to, with the 1D weights and derivatives per
 /// direction. Node (a, b) of the stencil is grid node (`base[0] + a`, `base[1] + b`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -1,0 +1,209 @@
+//! Points between processes: the ids that give them their one-process
+//! order, the first sharing out, the migration at the start of every step,
+//! and the gathering of every point on rank 0.
+
+use super::{Domain, Strips, Transport};
+use crate::Simulation;
+use crate::components::{MaterialPoints, bodies_in_scene_order};
+use crate::resources::{Clock, Grid};
+use crate::shape_functions::StencilGrid;
+use crate::systems::MpmSystems;
+use bevy_ecs::prelude::*;
+
+/// Steps between two rebalancings of the strips: the points' counts per
+/// tile column are gathered, and strips cut anew if they have changed.
+pub const REBALANCE_EVERY: u64 = 64;
+
+/// The index of every point of a body in the one-process run, in the order
+/// the points are stored: each process stores its points in the order of
+/// their ids, as one process stores them all.
+#[derive(Component, Clone, Debug, Default, PartialEq)]
+pub struct PointIds(pub Vec<u64>);
+
+/// Makes `sim`, built from the whole scene on every process, this process's
+/// part of a distributed run over `transport`: the grid is cut into strips
+/// of tile columns balanced by point count, the process keeps the points of
+/// its strip, and every step starts by moving the points that left it.
+pub fn attach(sim: &mut Simulation, transport: Box<dyn Transport>) -> Result<(), crate::StepError> {
+    let world = sim.world_mut();
+    let grid = world.resource::<Grid>().stencil_grid();
+    let bodies = bodies_in_scene_order(world);
+    let columns = |points: &MaterialPoints| -> Vec<u32> {
+        points
+            .position
+            .iter()
+            .map(|x| Strips::column_of(grid.base_column(x.x)))
+            .collect()
+    };
+    let mut counts = vec![0u64; grid_columns(&grid) as usize];
+    for &body in &bodies {
+        if let Some(points) = world.get::<MaterialPoints>(body) {
+            for column in columns(points) {
+                counts[column as usize] += 1;
+            }
+        }
+    }
+    let strips = Strips::balanced(&counts, transport.ranks());
+    let rank = transport.rank();
+    for &body in &bodies {
+        let Some(points) = world.get::<MaterialPoints>(body) else {
+            continue;
+        };
+        let own: Vec<usize> = columns(points)
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| strips.owner(**c) == rank)
+            .map(|(p, _)| p)
+            .collect();
+        let kept = points.select(&own);
+        let ids = PointIds(own.iter().map(|&p| p as u64).collect());
+        world.entity_mut(body).insert((kept, ids));
+    }
+    world.insert_non_send(Domain::new(transport, strips, grid_columns(&grid)));
+    sim.add_systems(
+        migrate_points
+            .in_set(MpmSystems::GridReset)
+            .before(crate::systems::reset_grid_layers),
+    )
+}
+
+/// The tile columns of the grid's base nodes.
+fn grid_columns(grid: &StencilGrid) -> u32 {
+    grid.nodes[0].div_ceil(crate::scatter::TILE_CELLS[0]) as u32
+}
+
+/// A body's points to send: their ids and every column.
+type Parcel = (Vec<u64>, MaterialPoints);
+
+/// Sends every point whose stencil's base node has left this process's
+/// strip to the process that owns it now, and takes the points that came
+/// in, keeping the order of ids. Every [`REBALANCE_EVERY`] steps the strips
+/// are first cut anew from the points' counts.
+fn migrate_points(world: &mut World) {
+    let grid = world.resource::<Grid>().stencil_grid();
+    let step = world.resource::<Clock>().step;
+    let bodies = bodies_in_scene_order(world);
+    let column_of = |x: f64| Strips::column_of(grid.base_column(x));
+    if step > 0 && step.is_multiple_of(REBALANCE_EVERY) {
+        let mut counts = vec![0u64; grid_columns(&grid) as usize];
+        for &body in &bodies {
+            if let Some(points) = world.get::<MaterialPoints>(body) {
+                for x in &points.position {
+                    counts[column_of(x.x) as usize] += 1;
+                }
+            }
+        }
+        let domain = world.non_send::<Domain>();
+        let bytes = counts.iter().flat_map(|c| c.to_le_bytes()).collect();
+        let mut total = vec![0u64; counts.len()];
+        for part in domain.transport().all_gather(bytes) {
+            for (sum, c) in total.iter_mut().zip(part.chunks_exact(8)) {
+                *sum += u64::from_le_bytes(c.try_into().expect("8 bytes"));
+            }
+        }
+        let strips = Strips::balanced(&total, domain.ranks());
+        world.non_send_mut::<Domain>().strips = strips;
+    }
+    for body in bodies {
+        let domain = world.non_send::<Domain>();
+        let (rank, ranks) = (domain.rank(), domain.ranks());
+        let (Some(points), Some(ids)) = (
+            world.get::<MaterialPoints>(body),
+            world.get::<PointIds>(body),
+        ) else {
+            continue;
+        };
+        let mut going: Vec<Vec<usize>> = vec![Vec::new(); ranks];
+        for (p, x) in points.position.iter().enumerate() {
+            going[domain.strips.owner(column_of(x.x))].push(p);
+        }
+        let parcel = |indices: &[usize]| -> Parcel {
+            (
+                indices.iter().map(|&p| ids.0[p]).collect(),
+                points.select(indices),
+            )
+        };
+        let others: Vec<usize> = (0..ranks).filter(|&r| r != rank).collect();
+        let messages = others
+            .iter()
+            .map(|&r| {
+                let bytes = postcard::to_stdvec(&parcel(&going[r])).expect("points encode");
+                (r, bytes)
+            })
+            .collect();
+        let staying = going[rank].len() == points.len();
+        let arrived: Vec<Parcel> = domain
+            .transport()
+            .exchange(messages, &others)
+            .iter()
+            .map(|bytes| postcard::from_bytes(bytes).expect("points decode"))
+            .collect();
+        if staying && arrived.iter().all(|(ids, _)| ids.is_empty()) {
+            continue;
+        }
+        let (mut all_ids, mut all) = parcel(&going[rank]);
+        for (ids, points) in &arrived {
+            all_ids.extend(ids);
+            all.append(points);
+        }
+        let mut order: Vec<usize> = (0..all_ids.len()).collect();
+        order.sort_unstable_by_key(|&k| all_ids[k]);
+        let ids = PointIds(order.iter().map(|&k| all_ids[k]).collect());
+        world.entity_mut(body).insert((all.select(&order), ids));
+    }
+}
+
+/// Runs `f` on rank 0 with every process's points in its bodies, in their
+/// one-process order (the other ranks send theirs and get `None`); without
+/// a domain, runs `f` on the simulation as it is. Every process calls it
+/// at the same point of the run.
+pub fn with_all_points<R>(sim: &mut Simulation, f: impl FnOnce(&mut Simulation) -> R) -> Option<R> {
+    let world = sim.world_mut();
+    if world.get_non_send::<Domain>().is_none() {
+        return Some(f(sim));
+    }
+    let bodies = bodies_in_scene_order(world);
+    let mut gathered = Vec::new();
+    for &body in &bodies {
+        let domain = world.non_send::<Domain>();
+        let (Some(points), Some(ids)) = (
+            world.get::<MaterialPoints>(body),
+            world.get::<PointIds>(body),
+        ) else {
+            continue;
+        };
+        let parcel: Parcel = (ids.0.clone(), points.clone());
+        if domain.rank() != 0 {
+            let bytes = postcard::to_stdvec(&parcel).expect("points encode");
+            domain.transport().exchange(vec![(0, bytes)], &[]);
+            continue;
+        }
+        let others: Vec<usize> = (1..domain.ranks()).collect();
+        let (mut all_ids, mut all) = parcel;
+        for bytes in domain.transport().exchange(Vec::new(), &others) {
+            let (ids, points): Parcel = postcard::from_bytes(&bytes).expect("points decode");
+            all_ids.extend(ids);
+            all.append(&points);
+        }
+        let mut order: Vec<usize> = (0..all_ids.len()).collect();
+        order.sort_unstable_by_key(|&k| all_ids[k]);
+        let whole = all.select(&order);
+        let own = std::mem::replace(
+            &mut *world
+                .get_mut::<MaterialPoints>(body)
+                .expect("a body's points"),
+            whole,
+        );
+        gathered.push((body, own));
+    }
+    if world.non_send::<Domain>().rank() != 0 {
+        return None;
+    }
+    let result = f(sim);
+    for (body, own) in gathered {
+        *sim.world_mut()
+            .get_mut::<MaterialPoints>(body)
+            .expect("a body's points") = own;
+    }
+    Some(result)
+}
