@@ -84,6 +84,8 @@ fn migrate_points(world: &mut World) {
     let step = world.resource::<Clock>().step;
     let bodies = bodies_in_scene_order(world);
     let column_of = |x: f64| Strips::column_of(grid.base_column(x));
+    // Whether the strips were cut anew: then points may go to any rank.
+    let mut recut = false;
     if step > 0 && step.is_multiple_of(REBALANCE_EVERY) {
         let mut counts = vec![0u64; grid_columns(&grid) as usize];
         for &body in &bodies {
@@ -102,7 +104,10 @@ fn migrate_points(world: &mut World) {
             }
         }
         let strips = Strips::balanced(&total, domain.ranks());
-        world.non_send_mut::<Domain>().strips = strips;
+        if strips != domain.strips {
+            recut = true;
+            world.non_send_mut::<Domain>().strips = strips;
+        }
     }
     for body in bodies {
         let domain = world.non_send::<Domain>();
@@ -113,9 +118,35 @@ fn migrate_points(world: &mut World) {
         ) else {
             continue;
         };
+        // Between cuts a point moves less than a cell a step, so it leaves
+        // only for a neighbour: only neighbours exchange. One that jumped
+        // further (a step far past its time-step limit) goes to the
+        // neighbour on its side, which passes it on.
+        let neighbours = domain.neighbours();
+        let others: Vec<usize> = if recut {
+            (0..ranks).filter(|&r| r != rank).collect()
+        } else {
+            neighbours.iter().map(|(r, _)| *r).collect()
+        };
+        let strip = domain.strips.columns(rank);
+        let toward = |column: u32| {
+            let side = if column < strip.start {
+                0
+            } else {
+                neighbours.len() - 1
+            };
+            neighbours[side].0
+        };
         let mut going: Vec<Vec<usize>> = vec![Vec::new(); ranks];
         for (p, x) in points.position.iter().enumerate() {
-            going[domain.strips.owner(column_of(x.x))].push(p);
+            let column = column_of(x.x);
+            let owner = domain.strips.owner(column);
+            let to = if owner == rank || others.contains(&owner) {
+                owner
+            } else {
+                toward(column)
+            };
+            going[to].push(p);
         }
         let parcel = |indices: &[usize]| -> Parcel {
             (
@@ -123,7 +154,6 @@ fn migrate_points(world: &mut World) {
                 points.select(indices),
             )
         };
-        let others: Vec<usize> = (0..ranks).filter(|&r| r != rank).collect();
         let messages = others
             .iter()
             .map(|&r| {
