@@ -164,3 +164,56 @@ fn a_checkpoint_from_n_ranks_resumes_on_m_ranks() {
         );
     }
 }
+
+/// The steps taken before the first error, and its message, on each of
+/// `ranks` ranks (one process without ranks), at most `steps` steps.
+fn failures_on_ranks(scene: &Scene, ranks: Option<usize>, steps: u64) -> Vec<(u64, String)> {
+    let run = |transport: Option<LocalRanks>| {
+        let mut sim = Simulation::from_scene(scene).unwrap_or_else(|e| panic!("{e}"));
+        if let Some(transport) = transport {
+            attach(&mut sim, Box::new(transport)).unwrap_or_else(|e| panic!("{e}"));
+        }
+        for taken in 0..steps {
+            if let Err(e) = sim.step() {
+                return (taken, e.to_string());
+            }
+        }
+        (steps, String::new())
+    };
+    let Some(ranks) = ranks else {
+        return vec![run(None)];
+    };
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = LocalRanks::connected(ranks)
+            .into_iter()
+            .map(|transport| scope.spawn(move || run(Some(transport))))
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().expect("a rank panicked"))
+            .collect()
+    })
+}
+
+/// A failure on one rank (points of the bar's right end thrown through
+/// the wall) ends the same step on every rank, with one message naming
+/// the rank that found it, instead of leaving the others waiting.
+#[test]
+fn a_failure_on_one_rank_ends_the_step_on_all() {
+    let mut scene = common::load_scene("wave_1d.ron");
+    scene.bodies[0].velocity = mpdem::scene::InitialVelocity::Field {
+        x: "1e4*x^40".into(),
+        y: "0".into(),
+    };
+    let one = failures_on_ranks(&scene, None, 50);
+    let (failed_at, message) = &one[0];
+    assert!(*failed_at < 50 && !message.is_empty(), "{one:?}");
+    for ranks in 2..=4 {
+        let all = failures_on_ranks(&scene, Some(ranks), 50);
+        for (taken, text) in &all {
+            assert_eq!(taken, failed_at, "{ranks} ranks: {text}");
+            assert_eq!(text, &all[0].1, "{ranks} ranks disagree");
+            assert!(text.contains(&format!("of {ranks})")), "{text}");
+        }
+    }
+}

@@ -10,6 +10,7 @@
 //! feature gives one over MPI, and [`LocalRanks`] one over channels between
 //! threads.
 
+mod failures;
 mod halo;
 #[cfg(feature = "mpi")]
 mod mpi_ranks;

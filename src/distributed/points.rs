@@ -7,7 +7,7 @@ use crate::Simulation;
 use crate::components::{MaterialPoints, bodies_in_scene_order};
 use crate::resources::{Clock, Grid};
 use crate::shape_functions::StencilGrid;
-use crate::systems::MpmSystems;
+use crate::systems::{DiagnosticsStep, MpmSystems};
 use bevy_ecs::prelude::*;
 
 /// Steps between two rebalancings of the strips: the points' counts per
@@ -60,11 +60,14 @@ pub fn attach(sim: &mut Simulation, transport: Box<dyn Transport>) -> Result<(),
         world.entity_mut(body).insert((kept, ids));
     }
     world.insert_non_send(Domain::new(transport, strips, grid_columns(&grid)));
-    sim.add_systems(
+    sim.add_systems((
         migrate_points
             .in_set(MpmSystems::GridReset)
             .before(crate::systems::reset_grid_layers),
-    )
+        super::failures::agree_on_failures
+            .in_set(DiagnosticsStep::CheckFinite)
+            .after(crate::systems::check_loose_points),
+    ))
 }
 
 /// The tile columns of the grid's base nodes.
