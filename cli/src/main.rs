@@ -6,6 +6,7 @@ mod bench;
 mod check;
 mod console;
 mod failure;
+mod mpi_job;
 mod run;
 mod signals;
 mod verify;
@@ -53,7 +54,15 @@ enum Command {
 const STOPPED_STATUS: u8 = 130;
 
 fn main() -> ExitCode {
-    let result = match Cli::parse().command {
+    let command = Cli::parse().command;
+    if let Some((rank, size)) = mpi_job::job().filter(|&(_, size)| size > 1) {
+        // One message for the job, from its first rank.
+        if rank == 0 {
+            eprintln!("{}", mpi_job::refusal(size));
+        }
+        return ExitCode::FAILURE;
+    }
+    let result = match command {
         Command::Run(args) => run::run(args),
         Command::Check(args) => check::check_all(&args.scenes),
         Command::Bench(args) => bench::bench(args),

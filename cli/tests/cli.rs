@@ -587,3 +587,34 @@ fn a_thread_count_beyond_the_limit_is_refused_at_once() {
     // Starting a hundred thousand threads took minutes.
     assert!(started.elapsed().as_secs() < 20);
 }
+
+/// Started as a rank of an MPI job of several, the command line refuses
+/// (rank 0 says why, once for the job) and writes nothing; a job of one is
+/// one process.
+#[test]
+fn a_rank_of_an_mpi_job_is_refused() {
+    let scene = common::scene_path("wave_1d.ron");
+    let as_rank = |rank: &str, size: &str| {
+        Command::new(env!("CARGO_BIN_EXE_mpdem"))
+            .args(["check", scene.to_str().unwrap()])
+            .env("OMPI_COMM_WORLD_RANK", rank)
+            .env("OMPI_COMM_WORLD_SIZE", size)
+            .output()
+            .expect("mpdem runs")
+    };
+    let first = as_rank("0", "4");
+    assert_eq!(first.status.code(), Some(1));
+    let said = String::from_utf8_lossy(&first.stderr);
+    assert!(said.contains("rank 0 of an MPI job of 4"), "{said}");
+    assert!(said.contains("docs/distributed.md"), "{said}");
+    let other = as_rank("3", "4");
+    assert_eq!(other.status.code(), Some(1));
+    assert!(other.stderr.is_empty());
+    let alone = as_rank("0", "1");
+    assert_eq!(
+        alone.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&alone.stderr)
+    );
+}
