@@ -174,16 +174,25 @@ fn migrate_points(world: &mut World) {
         if staying && arrived.iter().all(|(ids, _)| ids.is_empty()) {
             continue;
         }
-        let (mut all_ids, mut all) = parcel(&going[rank]);
-        for (ids, points) in &arrived {
-            all_ids.extend(ids);
-            all.append(points);
-        }
-        let mut order: Vec<usize> = (0..all_ids.len()).collect();
-        order.sort_unstable_by_key(|&k| all_ids[k]);
-        let ids = PointIds(order.iter().map(|&k| all_ids[k]).collect());
-        world.entity_mut(body).insert((all.select(&order), ids));
+        let (ids, points) = in_id_order(parcel(&going[rank]), arrived);
+        world.entity_mut(body).insert((points, ids));
     }
+}
+
+/// The points of `first` and `more` together, in the order of their ids.
+fn in_id_order(
+    first: Parcel,
+    more: impl IntoIterator<Item = Parcel>,
+) -> (PointIds, MaterialPoints) {
+    let (mut all_ids, mut all) = first;
+    for (ids, points) in more {
+        all_ids.extend(ids);
+        all.append(&points);
+    }
+    let mut order: Vec<usize> = (0..all_ids.len()).collect();
+    order.sort_unstable_by_key(|&k| all_ids[k]);
+    let ids = PointIds(order.iter().map(|&k| all_ids[k]).collect());
+    (ids, all.select(&order))
 }
 
 /// Runs `f` on rank 0 with every process's points in its bodies, in their
@@ -205,22 +214,19 @@ pub fn with_all_points<R>(sim: &mut Simulation, f: impl FnOnce(&mut Simulation) 
         ) else {
             continue;
         };
-        let parcel: Parcel = (ids.0.clone(), points.clone());
         if domain.rank() != 0 {
-            let bytes = postcard::to_stdvec(&parcel).expect("points encode");
+            let bytes = postcard::to_stdvec(&(&ids.0, points)).expect("points encode");
             domain.transport().exchange(vec![(0, bytes)], &[]);
             continue;
         }
         let others: Vec<usize> = (1..domain.ranks()).collect();
-        let (mut all_ids, mut all) = parcel;
-        for bytes in domain.transport().exchange(Vec::new(), &others) {
-            let (ids, points): Parcel = postcard::from_bytes(&bytes).expect("points decode");
-            all_ids.extend(ids);
-            all.append(&points);
-        }
-        let mut order: Vec<usize> = (0..all_ids.len()).collect();
-        order.sort_unstable_by_key(|&k| all_ids[k]);
-        let whole = all.select(&order);
+        let arrived = domain
+            .transport()
+            .exchange(Vec::new(), &others)
+            .iter()
+            .map(|bytes| postcard::from_bytes::<Parcel>(bytes).expect("points decode"))
+            .collect::<Vec<_>>();
+        let (_, whole) = in_id_order((ids.0.clone(), points.clone()), arrived);
         let own = std::mem::replace(
             &mut *world
                 .get_mut::<MaterialPoints>(body)
