@@ -15,6 +15,9 @@
 //! ```
 
 use crate::checkpoint::CheckpointError;
+use crate::distributed::{
+    DistributeError, Domain, Transport, attach, unsupported_parts, with_all_points,
+};
 use crate::io::RunOutput;
 pub use crate::io::manifest::SceneOrigin;
 use crate::io::manifest::written_by;
@@ -172,6 +175,16 @@ pub enum RunError {
     /// Writing the results failed.
     #[error("cannot write the output: {0}")]
     Output(std::io::Error),
+    /// The scene cannot run distributed, or its distributed step could not
+    /// be set up.
+    #[error("{0}")]
+    Distribute(#[from] DistributeError),
+    /// Another process of a distributed run failed, and says why.
+    #[error("rank {rank} of the distributed run failed (its message says why)")]
+    OnAnotherRank {
+        /// The first rank that failed.
+        rank: usize,
+    },
     /// [`Runner::run`] was called a second time.
     #[error("this runner has run: build a new one (with Start::Resume to carry the run on)")]
     RanAlready,
@@ -290,6 +303,9 @@ pub struct Runner {
     ran: bool,
     /// The request that cuts a step short (see [`Runner::interrupt_steps_on`]).
     interrupt: Option<Arc<AtomicBool>>,
+    /// The other processes of a distributed run (see
+    /// [`Runner::distribute_over`]), until the run starts.
+    transport: Option<Box<dyn Transport>>,
 }
 
 impl Runner {
@@ -374,6 +390,7 @@ impl Runner {
             sim,
             ran: false,
             interrupt: None,
+            transport: None,
         })
     }
 
@@ -422,6 +439,31 @@ impl Runner {
         self.interrupt = Some(request);
     }
 
+    /// Makes the run this process's part of a distributed run over
+    /// `transport` (see [`crate::distributed`]): every process of the job
+    /// builds its runner alike and runs it. Rank 0 alone locks and writes
+    /// the output folder, from every process's points gathered, and its
+    /// files are the ones a run on one process writes; a stop raised on any
+    /// process stops every one after the same step; every process returns
+    /// the same summary, or an error (a process whose error another one
+    /// found returns [`RunError::OnAnotherRank`]). A distributed run is
+    /// not cut short inside a step (its processes wait for each other's
+    /// messages): [`Runner::interrupt_steps_on`] is ignored. A scene the
+    /// distributed step does not cover is refused.
+    ///
+    /// Call it on every process as soon as its runner is built: it waits
+    /// for every process's runner, so that rank 0 writes nothing into the
+    /// folder while another process still checks it.
+    pub fn distribute_over(&mut self, transport: Box<dyn Transport>) -> Result<(), RunError> {
+        let unsupported = unsupported_parts(&self.scene);
+        if !unsupported.is_empty() {
+            return Err(DistributeError::Unsupported(unsupported).into());
+        }
+        transport.all_gather(Vec::new());
+        self.transport = Some(transport);
+        Ok(())
+    }
+
     /// Runs to the scene's end, or until `stop` is raised (after the step
     /// in progress), writing the results; calls `progress` every 64 steps
     /// and at the end. It holds the folder's lock ([`LOCK_FILE`]) from the
@@ -437,13 +479,42 @@ impl Runner {
         let started = Instant::now();
         let dir = self.options.out.clone();
         let checkpoint = dir.join(CHECKPOINT_FILE);
-        // Held until the run returns.
-        let _lock = lock_folder(&dir)?;
-        let mut output = self.open_output(&checkpoint)?;
-        if let Some(request) = &self.interrupt {
-            self.sim.interrupt_steps_on(Arc::clone(request));
-        }
+        let transport = self.transport.take();
+        // Rank 0 of a distributed run writes, as one process does.
+        let writes = transport.as_ref().is_none_or(|t| t.rank() == 0);
+        let opened = if writes {
+            // The lock is held until the run returns.
+            lock_folder(&dir)
+                .and_then(|lock| Ok((Some(lock), Some(self.open_output(&checkpoint)?))))
+        } else if self.options.start == Start::Resume {
+            self.sim
+                .restore_checkpoint(&self.scene, &checkpoint)
+                .map(|()| (None, None))
+                .map_err(RunError::from)
+        } else {
+            Ok((None, None))
+        };
+        let (_lock, mut output) = match transport {
+            Some(transport) => {
+                let flag = u8::from(opened.is_err());
+                let failed_on = first_raised(&transport.all_gather(vec![flag]), 1);
+                let opened = match failed_on {
+                    Some(rank) if opened.is_ok() => Err(RunError::OnAnotherRank { rank }),
+                    _ => opened,
+                }?;
+                attach(&mut self.sim, transport)?;
+                opened
+            }
+            None => {
+                let opened = opened?;
+                if let Some(request) = &self.interrupt {
+                    self.sim.interrupt_steps_on(Arc::clone(request));
+                }
+                opened
+            }
+        };
         let sim = &mut self.sim;
+        let frame_every = crate::io::output::frame_every(&self.scene, sim);
         let clock = sim.clock();
         let checkpoint_steps = self
             .options
@@ -495,19 +566,39 @@ impl Runner {
             let at = |e: &dyn std::fmt::Display| {
                 format!("step {} (t = {:.6e} s): {e}", now.step, now.time)
             };
-            if let Err(e) = output.after_step(sim) {
+            // A frame reads every process's points.
+            let written = with_points(sim, now.step.is_multiple_of(frame_every), |sim| {
+                output.as_mut().map_or(Ok(()), |o| o.after_step(sim))
+            });
+            if let Err(e) = written {
                 failure = Some(format!("cannot write the output at {}", at(&e)));
-                break;
             }
             let due = checkpoint_steps.is_some_and(|n| now.step.is_multiple_of(n));
-            if due || (keeps_checkpoint && now.finished()) {
-                if let Err(e) = sim.write_checkpoint(&checkpoint) {
-                    failure = Some(format!("cannot write the checkpoint at {}", at(&e)));
-                    break;
+            if failure.is_none() && (due || (keeps_checkpoint && now.finished())) {
+                let written = with_points(sim, true, |sim| match writes {
+                    true => sim.write_checkpoint(&checkpoint),
+                    false => Ok(()),
+                });
+                match written {
+                    Ok(()) => checkpoint_at = Some(now.step),
+                    Err(e) => failure = Some(format!("cannot write the checkpoint at {}", at(&e))),
                 }
-                checkpoint_at = Some(now.step);
+            }
+            // Every process of a distributed run stops after the same step.
+            let mut raised = 0;
+            if failure.is_some() {
+                raised |= FAILED;
             }
             if stop.load(Ordering::SeqCst) {
+                raised |= STOP;
+            }
+            let (raised, failed_on) = raised_on_any_rank(sim, raised);
+            if failure.is_none()
+                && let Some(rank) = failed_on
+            {
+                failure = Some(RunError::OnAnotherRank { rank }.to_string());
+            }
+            if failure.is_some() || raised & STOP != 0 {
                 break;
             }
             if now.step.is_multiple_of(64)
@@ -522,9 +613,28 @@ impl Runner {
         let now = sim.clock();
         let cut_short = sim.cut_short();
         let stopped = failure.is_none() && !now.finished();
-        let stop_checkpoint = (stopped && keeps_checkpoint && !cut_short)
-            .then(|| sim.write_checkpoint(&checkpoint).map_err(Box::new));
-        if let Err(e) = output.finish(sim, failure.is_some() || cut_short) {
+        let stop_checkpoint = (stopped && keeps_checkpoint && !cut_short).then(|| {
+            with_points(sim, true, |sim| match writes {
+                true => sim.write_checkpoint(&checkpoint),
+                false => Ok(()),
+            })
+            .map_err(Box::new)
+        });
+        let failed = failure.is_some() || cut_short;
+        let finished = with_points(sim, true, |sim| {
+            output.as_mut().map_or(Ok(()), |o| o.finish(sim, failed))
+        });
+        // Rank 0's writing is the job's.
+        let finished = match (
+            raised_on_any_rank(sim, u8::from(finished.is_err()) * FAILED),
+            finished,
+        ) {
+            ((_, Some(rank)), Ok(())) if failure.is_none() => Err(std::io::Error::other(
+                RunError::OnAnotherRank { rank }.to_string(),
+            )),
+            (_, finished) => finished,
+        };
+        if let Err(e) = finished {
             let written = format!("cannot write the output: {e}");
             let message = match failure {
                 Some(f) => format!("{f}\n{written}"),
@@ -558,7 +668,7 @@ impl Runner {
             name: sim.name().to_owned(),
             steps: now.step,
             time: now.time,
-            state_hash: sim.state_hash(),
+            state_hash: state_hash_of_all_points(sim),
             elapsed: started.elapsed(),
             dir,
         })
@@ -624,6 +734,55 @@ impl Runner {
             }
         }
     }
+}
+
+/// Raised after a step by a process whose run stops there.
+const STOP: u8 = 1;
+/// Raised after a step by a process that failed in it.
+const FAILED: u8 = 2;
+
+/// Runs `f` with every point of the run when `all_points` (in a
+/// distributed run, on rank 0 with every process's points gathered, and
+/// the other processes return `Ok`), or else with this process's points.
+fn with_points<E>(
+    sim: &mut Simulation,
+    all_points: bool,
+    f: impl FnOnce(&mut Simulation) -> Result<(), E>,
+) -> Result<(), E> {
+    if all_points {
+        with_all_points(sim, f).unwrap_or(Ok(()))
+    } else {
+        f(sim)
+    }
+}
+
+/// The bits `raised` by any process of a distributed run (every process
+/// calls it), and the first rank that raised [`FAILED`]; on one process,
+/// `raised` and no rank.
+fn raised_on_any_rank(sim: &Simulation, raised: u8) -> (u8, Option<usize>) {
+    let Some(domain) = sim.world().get_non_send::<Domain>() else {
+        return (raised, None);
+    };
+    let all = domain.transport().all_gather(vec![raised]);
+    let any = all.iter().fold(0, |any, bits| any | bits[0]);
+    (any, first_raised(&all, FAILED))
+}
+
+/// The first rank whose one byte in `all` has `bit` raised.
+fn first_raised(all: &[Vec<u8>], bit: u8) -> Option<usize> {
+    all.iter().position(|bits| bits[0] & bit != 0)
+}
+
+/// The state hash of every point of the run (in a distributed run, formed
+/// on rank 0 and sent to every process).
+fn state_hash_of_all_points(sim: &mut Simulation) -> u64 {
+    let hash = with_all_points(sim, Simulation::state_hash);
+    let Some(domain) = sim.world().get_non_send::<Domain>() else {
+        return hash.expect("one process hashes its own state");
+    };
+    let bytes = hash.map_or(Vec::new(), |h| h.to_le_bytes().to_vec());
+    let all = domain.transport().all_gather(bytes);
+    u64::from_le_bytes(all[0][..].try_into().expect("rank 0 sends 8 bytes"))
 }
 
 /// Share of its peak that the kinetic energy, averaged over the last tenth

@@ -217,3 +217,124 @@ fn a_failure_on_one_rank_ends_the_step_on_all() {
         }
     }
 }
+
+/// Every file under `dir`, by its path inside it, with its bytes (the
+/// folder's lock aside).
+fn files_under(dir: &std::path::Path) -> Vec<(std::path::PathBuf, Vec<u8>)> {
+    let mut files = Vec::new();
+    let mut folders = vec![dir.to_path_buf()];
+    while let Some(folder) = folders.pop() {
+        for entry in std::fs::read_dir(&folder).expect("a folder") {
+            let path = entry.expect("an entry").path();
+            if path.is_dir() {
+                folders.push(path);
+            } else if path.file_name() != Some(mpdem::runner::LOCK_FILE.as_ref()) {
+                let bytes = std::fs::read(&path).expect("a file");
+                files.push((path.strip_prefix(dir).expect("inside").to_path_buf(), bytes));
+            }
+        }
+    }
+    files.sort();
+    files
+}
+
+/// A run of the reduced, thrown collapse (frames every 0.01 s over 0.12 s)
+/// on 3 ranks writes, from rank 0, every file a run on one process writes,
+/// byte for byte, and every rank returns its state hash; a stop raised on
+/// one rank alone stops every rank after the same step.
+#[test]
+fn a_run_on_three_ranks_writes_the_files_of_one_process() {
+    use mpdem::runner::{RunError, RunOptions, Runner};
+    use std::sync::atomic::AtomicBool;
+    let mut scene = common::load_scene("column_collapse.ron");
+    scene.grid.cell_size *= 2.0;
+    scene.grid.cells = (scene.grid.cells.0 / 2, scene.grid.cells.1 / 2);
+    scene.time.dt *= 2.0;
+    scene.time.end = 0.012;
+    scene.output.frame_interval = Some(0.001);
+    scene.bodies[0].velocity = mpdem::scene::InitialVelocity::Constant(DVec2::new(3.0, 0.0));
+    let one = common::TempFolder::new("distributed-one");
+    let mut runner =
+        Runner::new(&scene, None, RunOptions::into_folder(&*one)).unwrap_or_else(|e| panic!("{e}"));
+    let hash = runner
+        .run(&AtomicBool::new(false), |_| {})
+        .unwrap_or_else(|e| panic!("{e}"))
+        .state_hash;
+    let three = common::TempFolder::new("distributed-three");
+    // Rank 2 alone is asked to stop, on its own count of steps.
+    let run_on_ranks = |dir: &std::path::Path, stop_at: Option<u64>| {
+        std::thread::scope(|scope| {
+            let handles: Vec<_> = LocalRanks::connected(3)
+                .into_iter()
+                .map(|transport| {
+                    let scene = &scene;
+                    scope.spawn(move || {
+                        let rank = mpdem::distributed::Transport::rank(&transport);
+                        let mut runner = Runner::new(scene, None, RunOptions::into_folder(dir))
+                            .unwrap_or_else(|e| panic!("{e}"));
+                        runner
+                            .distribute_over(Box::new(transport))
+                            .unwrap_or_else(|e| panic!("{e}"));
+                        let stop = AtomicBool::new(false);
+                        runner.run(&stop, |p| {
+                            if rank == 2 && stop_at.is_some_and(|s| p.step >= s) {
+                                stop.store(true, std::sync::atomic::Ordering::SeqCst);
+                            }
+                        })
+                    })
+                })
+                .collect();
+            handles
+                .into_iter()
+                .map(|h| h.join().expect("a rank panicked"))
+                .collect::<Vec<_>>()
+        })
+    };
+    for result in run_on_ranks(&three, None) {
+        let summary = result.unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(summary.state_hash, hash, "every rank returns the hash");
+    }
+    let (ones, threes) = (files_under(&one), files_under(&three));
+    let names = |files: &[(std::path::PathBuf, Vec<u8>)]| {
+        files.iter().map(|f| f.0.clone()).collect::<Vec<_>>()
+    };
+    assert_eq!(names(&ones), names(&threes));
+    assert!(
+        ones.len() > 20,
+        "frames, series and plots: {:?}",
+        names(&ones)
+    );
+    for ((name, a), (_, b)) in ones.iter().zip(&threes) {
+        assert!(a == b, "{} differs", name.display());
+    }
+    // Progress is reported after step 64, past that step's stop check:
+    // rank 2 raises its stop there, and every rank stops after step 65.
+    let stopped = common::TempFolder::new("distributed-stopped");
+    for result in run_on_ranks(&stopped, Some(64)) {
+        match result {
+            Err(RunError::Stopped { step, .. }) => assert_eq!(step, 65),
+            other => panic!("stopped after step 65, not {other:?}"),
+        }
+    }
+}
+
+/// A scene with parts the distributed step does not cover is refused
+/// before anything runs, saying which.
+#[test]
+fn a_scene_with_blocks_is_refused_with_what_is_not_covered() {
+    use mpdem::runner::{RunOptions, Runner};
+    let scene = common::load_scene("dam_break.ron");
+    let dir = common::TempFolder::new("distributed-refused");
+    let mut runner =
+        Runner::new(&scene, None, RunOptions::into_folder(&*dir)).unwrap_or_else(|e| panic!("{e}"));
+    let transport = LocalRanks::connected(1).pop().expect("one rank");
+    let refusal = runner
+        .distribute_over(Box::new(transport))
+        .expect_err("refused")
+        .to_string();
+    assert!(
+        refusal.contains("rigid blocks, body contacts, stages")
+            && refusal.contains("run this scene on one process"),
+        "{refusal}"
+    );
+}

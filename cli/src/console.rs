@@ -5,10 +5,28 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use mpdem::Warning;
 use std::io::Write;
 use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Whether this process prints nothing: a rank of an MPI job other than
+/// the first.
+static SILENT: AtomicBool = AtomicBool::new(false);
+
+/// Makes this process print nothing from here on.
+pub fn silence() {
+    SILENT.store(true, Ordering::Relaxed);
+}
+
+/// Whether this process prints nothing (see [`silence`]).
+pub fn silent() -> bool {
+    SILENT.load(Ordering::Relaxed)
+}
 
 /// Prints a line on standard output. A closed pipe (`| head`) drops it;
 /// any other failure (a full disk) is an error.
 pub fn say(line: &str) -> Result<(), Failure> {
+    if silent() {
+        return Ok(());
+    }
     match writeln!(std::io::stdout(), "{line}") {
         Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Failure::Stdout(e)),
         _ => Ok(()),
@@ -18,6 +36,9 @@ pub fn say(line: &str) -> Result<(), Failure> {
 /// Prints a line on standard error, made [`printable`]; a failure there
 /// has nowhere to be told, so it is dropped.
 pub fn say_err(line: &str) {
+    if silent() {
+        return;
+    }
     let _ = writeln!(std::io::stderr(), "{}", printable(line));
 }
 
@@ -68,7 +89,7 @@ pub fn say_warning(file: &Path, warning: &Warning) {
 /// A progress bar on stderr drawn with `template` (indicatif's), hidden
 /// with `quiet`.
 pub fn progress_bar(total: u64, quiet: bool, template: &str) -> ProgressBar {
-    if quiet {
+    if quiet || silent() {
         return ProgressBar::hidden();
     }
     let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());

@@ -49,21 +49,41 @@ enum Command {
     Verify(verify::VerifyArgs),
 }
 
+impl Command {
+    /// The subcommand's name on the command line.
+    fn name(&self) -> &'static str {
+        match self {
+            Command::Run(_) => "run",
+            Command::Check(_) => "check",
+            Command::Bench(_) => "bench",
+            Command::Verify(_) => "verify",
+        }
+    }
+}
+
 /// The exit status of a run stopped by a signal, as a shell reports a
 /// command interrupted by Ctrl-C.
 const STOPPED_STATUS: u8 = 130;
 
 fn main() -> ExitCode {
     let command = Cli::parse().command;
-    if let Some((rank, size)) = mpi_job::job().filter(|&(_, size)| size > 1) {
-        // One message for the job, from its first rank.
-        if rank == 0 {
-            eprintln!("{}", mpi_job::refusal(size));
+    let job = mpi_job::job().filter(|&(_, size)| size > 1);
+    if let Some((rank, size)) = job {
+        if let Some(refusal) = mpi_job::refusal(command.name(), size) {
+            // One message for the job, from its first rank.
+            if rank == 0 {
+                eprintln!("{refusal}");
+            }
+            return ExitCode::FAILURE;
         }
-        return ExitCode::FAILURE;
+        // The job speaks through its first rank.
+        if rank > 0 {
+            console::silence();
+        }
     }
     let result = match command {
-        Command::Run(args) => run::run(args),
+        Command::Check(_) if job.is_some_and(|(rank, _)| rank > 0) => Ok(()),
+        Command::Run(args) => run::run(args, job.is_some()),
         Command::Check(args) => check::check_all(&args.scenes),
         Command::Bench(args) => bench::bench(args),
         Command::Verify(args) => verify::verify(args),

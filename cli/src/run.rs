@@ -44,8 +44,9 @@ pub struct RunArgs {
     overwrite: bool,
 }
 
-/// Runs the scene on the threads asked for.
-pub fn run(args: RunArgs) -> Result<(), Failure> {
+/// Runs the scene on the threads asked for; `over_mpi`, over the ranks of
+/// the MPI job this process belongs to (the `mpi` feature).
+pub fn run(args: RunArgs, over_mpi: bool) -> Result<(), Failure> {
     let start = match (args.resume, args.restart) {
         (true, _) => Start::Resume,
         (false, true) => Start::Restart,
@@ -57,6 +58,7 @@ pub fn run(args: RunArgs) -> Result<(), Failure> {
         checkpoint_every: args.checkpoint_every,
         start,
         overwrite: args.overwrite,
+        over_mpi,
     };
     with_threads(args.threads, || run_scene(&args.scene, request))
 }
@@ -70,6 +72,7 @@ struct RunRequest<'a> {
     checkpoint_every: Option<f64>,
     start: Start,
     overwrite: bool,
+    over_mpi: bool,
 }
 
 fn run_scene(path: &Path, request: RunRequest) -> Result<(), Failure> {
@@ -88,7 +91,11 @@ fn run_scene(path: &Path, request: RunRequest) -> Result<(), Failure> {
     for w in runner.warnings() {
         say_warning(path, w);
     }
-    let signals = stop_on_signals();
+    #[cfg(feature = "mpi")]
+    if request.over_mpi {
+        runner.distribute_over(crate::mpi_job::join())?;
+    }
+    let signals = stop_on_signals(request.over_mpi);
     runner.interrupt_steps_on(signals.cut_short);
     let bar = progress_bar(
         0,

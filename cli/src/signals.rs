@@ -27,8 +27,11 @@ pub struct StopRequest {
 /// after its step (or cuts a long step short) and writes its results (and
 /// a checkpoint, if it writes them and its step was whole); another one,
 /// [`SIGNAL_REPEAT_WINDOW`] or more after the first, ends the process at
-/// once.
-pub fn stop_on_signals() -> StopRequest {
+/// once. As a rank of an MPI job (`in_job`), SIGUSR1 and SIGUSR2 stop the
+/// run too: `mpirun` passes them on to every rank and waits for the job,
+/// where it gives the ranks only a moment after a SIGTERM before it kills
+/// them. A distributed run stops after its step, never inside it.
+pub fn stop_on_signals(in_job: bool) -> StopRequest {
     let request = StopRequest {
         stop: Arc::new(AtomicBool::new(false)),
         cut_short: Arc::new(AtomicBool::new(false)),
@@ -41,9 +44,11 @@ pub fn stop_on_signals() -> StopRequest {
         match first {
             None => {
                 first = Some(Instant::now());
-                say_err(
-                    "stop requested: the run stops after its step (cut short if it runs on for half a second) and writes its results (another stop signal a second or more from now ends it at once, without them)",
-                );
+                say_err(if in_job {
+                    "stop requested: the run stops after its step and writes its results (another stop signal a second or more from now ends it at once, without them)"
+                } else {
+                    "stop requested: the run stops after its step (cut short if it runs on for half a second) and writes its results (another stop signal a second or more from now ends it at once, without them)"
+                });
                 let cut_short = Arc::clone(&cut_short);
                 std::thread::spawn(move || {
                     std::thread::sleep(STOP_GRACE);
@@ -61,6 +66,16 @@ pub fn stop_on_signals() -> StopRequest {
         say_err(&format!(
             "warning: a stop signal will end the run without writing its results: {e}"
         ));
+    }
+    #[cfg(feature = "mpi")]
+    if in_job {
+        for signal in [signal_hook::consts::SIGUSR1, signal_hook::consts::SIGUSR2] {
+            if let Err(e) = signal_hook::flag::register(signal, Arc::clone(&request.stop)) {
+                say_err(&format!(
+                    "warning: SIGUSR1 and SIGUSR2 will not stop the run: {e}"
+                ));
+            }
+        }
     }
     request
 }

@@ -588,9 +588,10 @@ fn a_thread_count_beyond_the_limit_is_refused_at_once() {
     assert!(started.elapsed().as_secs() < 20);
 }
 
-/// Started as a rank of an MPI job of several, the command line refuses
-/// (rank 0 says why, once for the job) and writes nothing; a job of one is
-/// one process.
+/// Started as a rank of an MPI job of several, the command line built
+/// without MPI refuses (rank 0 says why, once for the job) and writes
+/// nothing; a job of one is one process.
+#[cfg(not(feature = "mpi"))]
 #[test]
 fn a_rank_of_an_mpi_job_is_refused() {
     let scene = common::scene_path("wave_1d.ron");
@@ -606,6 +607,7 @@ fn a_rank_of_an_mpi_job_is_refused() {
     assert_eq!(first.status.code(), Some(1));
     let said = String::from_utf8_lossy(&first.stderr);
     assert!(said.contains("rank 0 of an MPI job of 4"), "{said}");
+    assert!(said.contains("built without MPI"), "{said}");
     assert!(said.contains("docs/distributed.md"), "{said}");
     let other = as_rank("3", "4");
     assert_eq!(other.status.code(), Some(1));

@@ -22,7 +22,9 @@ mod transport;
 pub(crate) use halo::foreign_patches;
 #[cfg(feature = "mpi")]
 pub use mpi_ranks::MpiRanks;
-pub use points::{PointIds, REBALANCE_EVERY, attach, with_all_points};
+pub use points::{
+    DistributeError, PointIds, REBALANCE_EVERY, attach, unsupported_parts, with_all_points,
+};
 pub(crate) use records::{add_tile_sums, record_probes};
 pub use strips::Strips;
 pub use transport::{LocalRanks, Transport};

@@ -24,7 +24,13 @@ pub struct PointIds(pub Vec<u64>);
 /// part of a distributed run over `transport`: the grid is cut into strips
 /// of tile columns balanced by point count, the process keeps the points of
 /// its strip, and every step starts by moving the points that left it.
-pub fn attach(sim: &mut Simulation, transport: Box<dyn Transport>) -> Result<(), crate::StepError> {
+/// A scene with parts the distributed step does not yet cover is refused
+/// ([`DistributeError::Unsupported`]), the same on every process.
+pub fn attach(sim: &mut Simulation, transport: Box<dyn Transport>) -> Result<(), DistributeError> {
+    let unsupported = unsupported_parts(sim.scene());
+    if !unsupported.is_empty() {
+        return Err(DistributeError::Unsupported(unsupported));
+    }
     let world = sim.world_mut();
     let grid = world.resource::<Grid>().stencil_grid();
     let bodies = bodies_in_scene_order(world);
@@ -67,7 +73,39 @@ pub fn attach(sim: &mut Simulation, transport: Box<dyn Transport>) -> Result<(),
         super::failures::agree_on_failures
             .in_set(DiagnosticsStep::CheckFinite)
             .after(crate::systems::check_loose_points),
-    ))
+    ))?;
+    Ok(())
+}
+
+/// Why a simulation cannot be made part of a distributed run.
+#[derive(Debug, thiserror::Error)]
+pub enum DistributeError {
+    /// The scene has parts whose steps read or write points of other
+    /// processes, which the distributed step does not yet exchange.
+    #[error(
+        "a distributed run does not yet cover {}: run this scene on one process",
+        .0.join(", ")
+    )]
+    Unsupported(Vec<&'static str>),
+    /// The distributed step's systems could not be added.
+    #[error(transparent)]
+    Systems(#[from] crate::StepError),
+}
+
+/// The parts of `scene` the distributed step does not yet cover: contacts
+/// and blocks gather forces from points of every process, stages keep
+/// lists of points, and the fronts and deposits are sampled over a whole
+/// body.
+pub fn unsupported_parts(scene: &crate::scene::Scene) -> Vec<&'static str> {
+    [
+        (!scene.blocks.is_empty(), "rigid blocks"),
+        (!scene.body_contacts.is_empty(), "body contacts"),
+        (!scene.stages.is_empty(), "stages"),
+        (scene.output.fronts, "fronts and deposits (output.fronts)"),
+    ]
+    .into_iter()
+    .filter_map(|(found, part)| found.then_some(part))
+    .collect()
 }
 
 /// The tile columns of the grid's base nodes.

@@ -488,7 +488,7 @@ fn draw_figure(path: &Path, figure: &Figure) -> std::io::Result<()> {
 
 /// Steps between frames: the scene's frame interval (its default follows
 /// the run's `time.end`) in whole steps, at least one.
-fn frame_every(scene: &Scene, sim: &Simulation) -> u64 {
+pub(crate) fn frame_every(scene: &Scene, sim: &Simulation) -> u64 {
     let clock = sim.clock();
     scene.output.frame_every(clock.end, clock.dt)
 }
