@@ -303,9 +303,6 @@ pub struct Runner {
     ran: bool,
     /// The request that cuts a step short (see [`Runner::interrupt_steps_on`]).
     interrupt: Option<Arc<AtomicBool>>,
-    /// The other processes of a distributed run (see
-    /// [`Runner::distribute_over`]), until the run starts.
-    transport: Option<Box<dyn Transport>>,
 }
 
 impl Runner {
@@ -390,7 +387,6 @@ impl Runner {
             sim,
             ran: false,
             interrupt: None,
-            transport: None,
         })
     }
 
@@ -439,37 +435,49 @@ impl Runner {
         self.interrupt = Some(request);
     }
 
-    /// Makes the run this process's part of a distributed run over
-    /// `transport` (see [`crate::distributed`]): every process of the job
-    /// builds its runner alike and runs it. Rank 0 alone locks and writes
-    /// the output folder, from every process's points gathered, and its
-    /// files are the ones a run on one process writes; a stop raised on any
-    /// process stops every one after the same step; every process returns
-    /// the same summary, or an error (a process whose error another one
-    /// found returns [`RunError::OnAnotherRank`]). A distributed run is
-    /// not cut short inside a step (its processes wait for each other's
-    /// messages): [`Runner::interrupt_steps_on`] is ignored. A scene the
-    /// distributed step does not cover is refused.
-    ///
-    /// Call it on every process as soon as its runner is built: it waits
-    /// for every process's runner, so that rank 0 writes nothing into the
-    /// folder while another process still checks it.
-    pub fn distribute_over(&mut self, transport: Box<dyn Transport>) -> Result<(), RunError> {
-        let unsupported = unsupported_parts(&self.scene);
-        if !unsupported.is_empty() {
-            return Err(DistributeError::Unsupported(unsupported).into());
-        }
-        transport.all_gather(Vec::new());
-        self.transport = Some(transport);
-        Ok(())
-    }
-
     /// Runs to the scene's end, or until `stop` is raised (after the step
     /// in progress), writing the results; calls `progress` every 64 steps
     /// and at the end. It holds the folder's lock ([`LOCK_FILE`]) from the
     /// start, and is refused while another run holds it.
     pub fn run(
         &mut self,
+        stop: &AtomicBool,
+        progress: impl FnMut(&Progress),
+    ) -> Result<RunSummary, RunError> {
+        self.run_over(None, stop, progress)
+    }
+
+    /// As [`Runner::run`], as this process's part of a distributed run over
+    /// `transport` (see [`crate::distributed`]): every process of the job
+    /// builds its runner alike and runs it with this. Rank 0 alone locks
+    /// and writes the output folder, from every process's points gathered,
+    /// and its files are the ones a run on one process writes; a stop
+    /// raised on any process stops every one after the same step; every
+    /// process returns the same summary, or an error (a process whose
+    /// error another one found returns [`RunError::OnAnotherRank`]). A
+    /// distributed run is not cut short inside a step (its processes wait
+    /// for each other's messages): [`Runner::interrupt_steps_on`] is
+    /// ignored. A scene the distributed step does not cover is refused.
+    /// Rank 0 writes nothing until every process has called this, so that
+    /// no process's runner checks a folder rank 0 is writing.
+    pub fn run_distributed(
+        &mut self,
+        transport: Box<dyn Transport>,
+        stop: &AtomicBool,
+        progress: impl FnMut(&Progress),
+    ) -> Result<RunSummary, RunError> {
+        let unsupported = unsupported_parts(&self.scene);
+        if !unsupported.is_empty() {
+            return Err(DistributeError::Unsupported(unsupported).into());
+        }
+        transport.all_gather(Vec::new());
+        self.run_over(Some(transport), stop, progress)
+    }
+
+    /// The run, on one process or over `transport`.
+    fn run_over(
+        &mut self,
+        transport: Option<Box<dyn Transport>>,
         stop: &AtomicBool,
         mut progress: impl FnMut(&Progress),
     ) -> Result<RunSummary, RunError> {
@@ -479,7 +487,6 @@ impl Runner {
         let started = Instant::now();
         let dir = self.options.out.clone();
         let checkpoint = dir.join(CHECKPOINT_FILE);
-        let transport = self.transport.take();
         // Rank 0 of a distributed run writes, as one process does.
         let writes = transport.as_ref().is_none_or(|t| t.rank() == 0);
         let opened = if writes {

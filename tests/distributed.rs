@@ -272,11 +272,8 @@ fn a_run_on_three_ranks_writes_the_files_of_one_process() {
                         let rank = mpdem::distributed::Transport::rank(&transport);
                         let mut runner = Runner::new(scene, None, RunOptions::into_folder(dir))
                             .unwrap_or_else(|e| panic!("{e}"));
-                        runner
-                            .distribute_over(Box::new(transport))
-                            .unwrap_or_else(|e| panic!("{e}"));
                         let stop = AtomicBool::new(false);
-                        runner.run(&stop, |p| {
+                        runner.run_distributed(Box::new(transport), &stop, |p| {
                             if rank == 2 && stop_at.is_some_and(|s| p.step >= s) {
                                 stop.store(true, std::sync::atomic::Ordering::SeqCst);
                             }
@@ -328,8 +325,9 @@ fn a_scene_with_blocks_is_refused_with_what_is_not_covered() {
     let mut runner =
         Runner::new(&scene, None, RunOptions::into_folder(&*dir)).unwrap_or_else(|e| panic!("{e}"));
     let transport = LocalRanks::connected(1).pop().expect("one rank");
+    let stop = std::sync::atomic::AtomicBool::new(false);
     let refusal = runner
-        .distribute_over(Box::new(transport))
+        .run_distributed(Box::new(transport), &stop, |_| {})
         .expect_err("refused")
         .to_string();
     assert!(

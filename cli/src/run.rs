@@ -92,9 +92,9 @@ fn run_scene(path: &Path, request: RunRequest) -> Result<(), Failure> {
         say_warning(path, w);
     }
     #[cfg(feature = "mpi")]
-    if request.over_mpi {
-        runner.distribute_over(crate::mpi_job::join())?;
-    }
+    let transport = request.over_mpi.then(crate::mpi_job::join);
+    #[cfg(not(feature = "mpi"))]
+    let transport = None;
     let signals = stop_on_signals(request.over_mpi);
     runner.interrupt_steps_on(signals.cut_short);
     let bar = progress_bar(
@@ -107,7 +107,7 @@ fn run_scene(path: &Path, request: RunRequest) -> Result<(), Failure> {
     // The latest report not yet logged, logged when the run ends.
     let mut unlogged: Option<String> = None;
     let mut notices_shown = 0;
-    let result = runner.run(&signals.stop, |p| {
+    let report = |p: &Progress| {
         let stage = p.stage.map_or(String::new(), |s| format!(", stage '{s}'"));
         let of = match p.stage {
             Some(_) => format!("at most {}", p.length),
@@ -150,7 +150,11 @@ fn run_scene(path: &Path, request: RunRequest) -> Result<(), Failure> {
         } else {
             unlogged = Some(line);
         }
-    });
+    };
+    let result = match transport {
+        Some(transport) => runner.run_distributed(transport, &signals.stop, report),
+        None => runner.run(&signals.stop, report),
+    };
     bar.finish_and_clear();
     if let Some(line) = unlogged.filter(|_| log_lines) {
         say_err(&line);

@@ -74,6 +74,11 @@ impl Transport for MpiRanks {
         let mut lengths = vec![0u64; ranks];
         self.world
             .all_gather_into(&(bytes.len() as u64), &mut lengths[..]);
+        if lengths.iter().all(|&n| n == 0) {
+            // MPI refuses a gather of nothing; the lengths' gather was the
+            // call every rank makes.
+            return vec![Vec::new(); ranks];
+        }
         let counts: Vec<i32> = lengths.iter().map(|&n| n as i32).collect();
         let starts: Vec<i32> = counts
             .iter()
