@@ -272,12 +272,14 @@ impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
     /// patches of other processes' tiles (`foreign`, in tile order) are
     /// taken in their tiles' places, so that each nodal sum is formed as
     /// one process holding every tile forms it; a foreign patch adds only
-    /// to the nodes of the window.
+    /// to the `active` nodes (inside the window), which this process zeroes
+    /// before each scatter: the nodes past them hold zero, and must keep
+    /// it for when they become active.
     pub fn add_into_with<N: Send>(
         &self,
         foreign: &[SharedPatch<T>],
         nodes: &mut [N],
-        window: NodeRect,
+        (window, active): (NodeRect, NodeRect),
         merge: impl Fn(&mut N, T) + Sync,
     ) {
         for (rect, _) in self.patches() {
@@ -297,9 +299,10 @@ impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
                 .partition_point(|r| tile_of(r)[0] <= j / TILE_CELLS[1]);
             let slots = self.values.chunks(PATCH_NODES).skip(first);
             let mut own = self.rects[first..last].iter().zip(slots).peekable();
+            let active_row = (active.start[1]..active.end[1]).contains(&j);
             let mut others = foreign
                 .iter()
-                .filter(|f| (f.rect.start[1]..f.rect.end[1]).contains(&j))
+                .filter(|f| active_row && (f.rect.start[1]..f.rect.end[1]).contains(&j))
                 .peekable();
             loop {
                 let take_own = match (own.peek(), others.peek()) {
@@ -310,10 +313,10 @@ impl<T: Copy + Default + AddAssign + Send + Sync> Scatter<T> {
                 };
                 if take_own {
                     let (rect, slot) = own.next().expect("peeked");
-                    add_row(row, j, window, *rect, slot, &merge);
+                    add_row(row, j, (window, window), *rect, slot, &merge);
                 } else {
                     let other = others.next().expect("peeked");
-                    add_row(row, j, window, other.rect, &other.values, &merge);
+                    add_row(row, j, (window, active), other.rect, &other.values, &merge);
                 }
             }
         });
@@ -367,7 +370,7 @@ fn tile_of(rect: &NodeRect) -> [usize; 2] {
 fn add_row<N, T: Copy>(
     row: &mut [N],
     j: usize,
-    window: NodeRect,
+    (window, within): (NodeRect, NodeRect),
     rect: NodeRect,
     values: &[T],
     merge: &impl Fn(&mut N, T),
@@ -378,8 +381,8 @@ fn add_row<N, T: Copy>(
     let width = rect.width();
     let values = &values[(j - rect.start[1]) * width..][..width];
     let (from, to) = (
-        rect.start[0].max(window.start[0]),
-        rect.end[0].min(window.end[0]),
+        rect.start[0].max(within.start[0]),
+        rect.end[0].min(within.end[0]),
     );
     if from >= to {
         return;
@@ -456,7 +459,8 @@ mod tests {
                 },
             );
             let mut sums = vec![DVec3::ZERO; nodes[0] * nodes[1]];
-            scatter.add_into_with(&[], &mut sums, NodeRect::whole(nodes), |n, s| *n += s);
+            let whole = NodeRect::whole(nodes);
+            scatter.add_into_with(&[], &mut sums, (whole, whole), |n, s| *n += s);
             sums
         };
         let positions: Vec<DVec2> = (0..300)
@@ -553,7 +557,8 @@ mod tests {
                 let mut scatter = Scatter::<Real>::default();
                 scatter.scatter(&stencils, &order, |p| 1.0 + p as Real, |m, w, _, _| m * w);
                 let mut grid = vec![0.0; nodes[0] * nodes[1]];
-                scatter.add_into_with(&[], &mut grid, NodeRect::whole(nodes), |n, v| *n += v);
+                let whole = NodeRect::whole(nodes);
+                scatter.add_into_with(&[], &mut grid, (whole, whole), |n, v| *n += v);
                 grid
             })
         };

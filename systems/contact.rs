@@ -2,10 +2,14 @@
 //! (paper section 3.2.2).
 
 use crate::components::{
-    BlockContactLaw, BlockContacts, BlockId, MaterialPoints, NeighbourList, PartReactions,
-    PointContact, Pose, Reaction, RigidMass, RigidShape, RigidVelocity, sort_into_scene_order,
+    BlockContactLaw, BlockContacts, BlockId, BodyIndex, MaterialPoints, NeighbourList,
+    PartReactions, PointContact, Pose, Reaction, RigidMass, RigidShape, RigidVelocity,
+    sort_into_scene_order,
 };
 use crate::contact::{disk_shape_contact, overlap_area, overlap_area_integral, pair_force};
+use crate::distributed::{
+    ContactHalfSizes, Domain, PointIds, SharedContact, local_index, share_contacts,
+};
 use crate::math::{DVec2, Real};
 use crate::resources::{Clock, ContactSettings, Geometry, Penetration, Settings};
 use crate::rigid::velocity_at;
@@ -59,31 +63,41 @@ type BlockData = (
 /// torque about the centre of mass to the block's `Reaction`, both summed in
 /// that fixed order.
 ///
+/// In a distributed run each process tests its own points, names each
+/// contact's point by its one-process index, and every process takes the
+/// contacts of all (in the order one process finds them) before summing:
+/// every process then holds every block's contacts and reaction.
+///
 /// Reads: `Clock`, `ContactSettings`, `Settings::geometry`, blocks (shape, pose, velocity, mass, law, neighbour list),
 /// `MaterialPoints` (position, velocity, velocity gradient, contact radius).
 /// Writes: `MaterialPoints::contact_force`, `BlockContacts`, `Reaction`.
+#[allow(clippy::too_many_arguments)] // the distributed run's share is one more
 pub fn compute_rigid_contacts(
     clock: Res<Clock>,
     settings: Res<ContactSettings>,
     numerics: Res<Settings>,
     mut order: Local<Vec<(u32, Entity)>>,
     mut found: Local<Vec<Option<PointContact>>>,
-    mut bodies: Query<&mut MaterialPoints>,
+    mut bodies: Query<(&mut MaterialPoints, Option<&PointIds>, &BodyIndex)>,
     mut blocks: Query<(Entity, BlockData)>,
+    domain: Option<NonSend<Domain>>,
+    mut half_sizes: Option<ResMut<ContactHalfSizes>>,
+    mut shared: Local<Vec<SharedContact>>,
 ) {
     // The first contact system of the step: it resets every point's
     // contact force (also when there is no block, for the body contacts).
-    for mut points in &mut bodies {
+    for (mut points, ..) in &mut bodies {
         points.contact_force.fill(DVec2::ZERO);
     }
     if blocks.is_empty() {
         return;
     }
+    shared.clear();
     sort_into_scene_order(&mut order, blocks.iter().map(|(e, b)| (b.0.index, e)));
     for (_, entity) in order.iter() {
         let Ok((
             _,
-            (_, shape, pose, velocity, mass, law, list, mut contacts, mut reaction, mut parts),
+            (id, shape, pose, velocity, mass, law, list, mut contacts, mut reaction, mut parts),
         )) = blocks.get_mut(*entity)
         else {
             continue;
@@ -98,9 +112,11 @@ pub fn compute_rigid_contacts(
         list.points
             .par_iter()
             .with_min_len(MIN_CONTACTS_PER_TASK)
-            .map(|&(body, p)| {
-                let points = readable.get(body).ok()?;
-                let i = p as usize;
+            .map(|&(body, i)| {
+                let (points, ids, _) = readable.get(body).ok()?;
+                let i = i as usize;
+                // The point's one-process index.
+                let p = ids.map_or(i as u32, |ids| ids.0[i] as u32);
                 let radius = points.contact_radius[i];
                 let geometry =
                     disk_shape_contact(points.position[i], radius, &*shape.0, &parry_pose)?;
@@ -149,23 +165,107 @@ pub fn compute_rigid_contacts(
                 })
             })
             .collect_into_vec(&mut found);
-        // Forces and reactions summed sequentially, in list order.
-        *reaction = Reaction::default();
-        parts.0.iter_mut().for_each(|f| *f = DVec2::ZERO);
-        let center = mass.center(pose);
-        let compound = shape.0.as_compound();
-        for contact in found.iter().flatten() {
-            if let Ok(mut points) = bodies.get_mut(contact.body) {
-                points.contact_force[contact.point as usize] += contact.force;
+        if domain.is_some() {
+            for contact in found.iter().flatten() {
+                let Ok((points, ids, index)) = bodies.get(contact.body) else {
+                    continue;
+                };
+                let i = local_index(ids, contact.point).expect("a point of this process");
+                shared.push(SharedContact {
+                    block: id.index,
+                    body: index.0,
+                    contact: *contact,
+                    half_size: points.half_size[i],
+                });
             }
-            reaction.force -= contact.force;
-            reaction.torque -= (contact.at - center).perp_dot(contact.force);
-            let part = compound.map_or(0, |c| nearest_part(c, &parry_pose, contact.at));
-            parts.0[part] -= contact.force;
-            contacts.current.push(*contact);
+            continue;
         }
-        contacts.current.sort_unstable_by_key(|c| (c.body, c.point));
+        let contacts_found = found.iter().flatten().copied();
+        let block = (
+            shape,
+            pose,
+            mass,
+            &mut *contacts,
+            &mut *reaction,
+            &mut *parts,
+        );
+        sum_contacts(block, contacts_found, &mut bodies);
     }
+    let Some(domain) = domain else {
+        return;
+    };
+    // Every process's contacts, in the one-process order.
+    let all = share_contacts(&domain, &shared);
+    let half_sizes = half_sizes
+        .as_mut()
+        .expect("a distributed run's contact half-sizes");
+    half_sizes.0.clear();
+    half_sizes.0.extend(
+        all.iter()
+            .map(|c| ((c.block, c.contact.body, c.contact.point), c.half_size)),
+    );
+    half_sizes.0.sort_unstable_by_key(|e| e.0);
+    let mut rest = &all[..];
+    for (index, entity) in order.iter() {
+        let Ok((_, (_, shape, pose, _, mass, _, _, mut contacts, mut reaction, mut parts))) =
+            blocks.get_mut(*entity)
+        else {
+            continue;
+        };
+        let count = rest.iter().take_while(|c| c.block == *index).count();
+        let (these, later) = rest.split_at(count);
+        rest = later;
+        let block = (
+            shape,
+            pose,
+            mass,
+            &mut *contacts,
+            &mut *reaction,
+            &mut *parts,
+        );
+        sum_contacts(block, these.iter().map(|c| c.contact), &mut bodies);
+    }
+}
+
+/// A block's parts the sum of its contacts reads and writes.
+type SummedBlock<'a> = (
+    &'a RigidShape,
+    &'a Pose,
+    &'a RigidMass,
+    &'a mut BlockContacts,
+    &'a mut Reaction,
+    &'a mut PartReactions,
+);
+
+/// Sums a block's `found` contacts sequentially, in the order given (the
+/// list's): each force onto its point's contact force (if this process
+/// holds the point), and the opposite force and its torque about the
+/// centre of mass onto the block's reaction and the part nearest the
+/// contact; the contacts become the block's current ones, sorted by body
+/// and point.
+fn sum_contacts(
+    (shape, pose, mass, contacts, reaction, parts): SummedBlock,
+    found: impl Iterator<Item = PointContact>,
+    bodies: &mut Query<(&mut MaterialPoints, Option<&PointIds>, &BodyIndex)>,
+) {
+    *reaction = Reaction::default();
+    parts.0.iter_mut().for_each(|f| *f = DVec2::ZERO);
+    let center = mass.center(pose);
+    let parry_pose = pose.to_parry();
+    let compound = shape.0.as_compound();
+    for contact in found {
+        if let Ok((mut points, ids, _)) = bodies.get_mut(contact.body)
+            && let Some(i) = local_index(ids, contact.point)
+        {
+            points.contact_force[i] += contact.force;
+        }
+        reaction.force -= contact.force;
+        reaction.torque -= (contact.at - center).perp_dot(contact.force);
+        let part = compound.map_or(0, |c| nearest_part(c, &parry_pose, contact.at));
+        parts.0[part] -= contact.force;
+        contacts.current.push(contact);
+    }
+    contacts.current.sort_unstable_by_key(|c| (c.body, c.point));
 }
 
 /// Index of the part of `compound` (placed at `pose`) nearest `point`; the

@@ -4,6 +4,7 @@ use crate::components::{
     BlockContacts, BlockId, BodyIndex, GridLayer, MaterialPoints, sort_into_scene_order,
 };
 use crate::contact::{ForceApplication, traction_points};
+use crate::distributed::{ContactHalfSizes, PointIds, local_index};
 use crate::math::{DVec2, Real, outer};
 use crate::resources::{BodyContacts, ContactSettings, Grid, Settings};
 use crate::shape_functions::{ShapeFunction, StencilGrid};
@@ -27,9 +28,15 @@ use bevy_ecs::prelude::*;
 /// contact order, then the body–body contacts in key order (each pair's
 /// two forces), so the nodal sums are formed in a fixed order.
 ///
+/// In a distributed run every process holds every block contact: the
+/// contacts of the points another process holds are added too, to the
+/// nodes of this process's layer their stencils reach, so that the nodes
+/// two processes share get every contact, in the one-process order.
+///
 /// Reads: `Grid`, `ContactSettings`, `Settings::shape_function`,
 /// `BlockContacts`, `BodyContacts`, `MaterialPoints` (position, half-size).
 /// Writes: `GridLayer::nodes` (external force).
+#[allow(clippy::too_many_arguments)] // the distributed run's half-sizes are one more
 pub fn transfer_contact_forces(
     (grid, settings, numerics): (Res<Grid>, Res<ContactSettings>, Res<Settings>),
     mut order: Local<Vec<(u32, Entity)>>,
@@ -37,6 +44,7 @@ pub fn transfer_contact_forces(
     body_contacts: Option<Res<BodyContacts>>,
     mut body_order: Local<Vec<(BodyIndex, Entity)>>,
     mut bodies: Query<(Entity, &BodyIndex, &MaterialPoints, &mut GridLayer)>,
+    (ids, half_sizes): (Query<&PointIds>, Option<Res<ContactHalfSizes>>),
 ) {
     let transfer = match settings.force_application {
         // Scenes are validated to at least 1; a system changing the setting
@@ -46,29 +54,36 @@ pub fn transfer_contact_forces(
             Transfer::Moment(numerics.shape_function, grid.stencil_grid())
         }
     };
-    // `force` on point p, its tangential part `tangential`, at `at`.
-    let add = |points: &MaterialPoints,
+    // `force` on the point at `place`, its tangential part `tangential`,
+    // at `at`.
+    let add = |place: PointPlace,
                layer: &mut GridLayer,
-               p: u32,
                (force, tangential, at): (DVec2, DVec2, DVec2)| {
         match &transfer {
             Transfer::Traction(count) => {
-                add_traction(&grid, points, layer, p, (force, force - tangential), *count)
+                add_traction(&grid, place, layer, (force, force - tangential), *count)
             }
             Transfer::Moment(kernel, stencil_grid) => {
-                add_moment(*kernel, stencil_grid, points, layer, p, tangential, at)
+                add_moment(*kernel, stencil_grid, place, layer, tangential, at)
             }
         }
     };
     sort_into_scene_order(&mut order, blocks.iter().map(|(e, id, _)| (id.index, e)));
     for (_, entity) in order.iter() {
-        let Ok((_, _, contacts)) = blocks.get(*entity) else {
+        let Ok((_, id, contacts)) = blocks.get(*entity) else {
             continue;
         };
         for contact in &contacts.current {
             if let Ok((_, _, points, mut layer)) = bodies.get_mut(contact.body) {
+                let place = match local_index(ids.get(contact.body).ok(), contact.point) {
+                    Some(p) => PointPlace::Held(points.position[p], points.half_size[p]),
+                    None => match half_sizes.as_ref().and_then(|h| h.of(id.index, contact)) {
+                        Some(half_size) => PointPlace::Elsewhere(contact.from, half_size),
+                        None => continue,
+                    },
+                };
                 let acting = (contact.force, contact.tangential, contact.at);
-                add(points, &mut layer, contact.point, acting);
+                add(place, &mut layer, acting);
             }
         }
     }
@@ -79,9 +94,30 @@ pub fn transfer_contact_forces(
     for contact in &body_contacts.current {
         for (body, point, sign) in [(contact.a, contact.p, 1.0), (contact.b, contact.q, -1.0)] {
             if let Ok((_, _, points, mut layer)) = bodies.get_mut(body_order[body as usize].1) {
+                let p = point as usize;
+                let place = PointPlace::Held(points.position[p], points.half_size[p]);
                 let acting = (sign * contact.force, sign * contact.tangential, contact.at);
-                add(points, &mut layer, point, acting);
+                add(place, &mut layer, acting);
             }
+        }
+    }
+}
+
+/// A contact's point: its position and domain half-size, and whether this
+/// process holds it.
+#[derive(Clone, Copy)]
+enum PointPlace {
+    /// One of this process's points: its stencil lies in the layer's window.
+    Held(DVec2, DVec2),
+    /// A point another process holds: its stencil may reach past the window.
+    Elsewhere(DVec2, DVec2),
+}
+
+impl PointPlace {
+    /// The point's position and domain half-size.
+    fn position_and_half_size(self) -> (DVec2, DVec2) {
+        match self {
+            PointPlace::Held(x, h) | PointPlace::Elsewhere(x, h) => (x, h),
         }
     }
 }
@@ -95,24 +131,41 @@ enum Transfer {
     Moment(ShapeFunction, StencilGrid),
 }
 
-/// Adds the first moment of `force` at `at` about point `p`,
+/// Adds the first moment of `force` at `at` about the point at `place`,
 /// (f ⊗ (x_c − x_p)) G_ip, to the nodes of the point's stencil (none for a
 /// point that has left the grid, which particle-to-grid reports).
 fn add_moment(
     kernel: ShapeFunction,
     stencil_grid: &StencilGrid,
-    points: &MaterialPoints,
+    place: PointPlace,
     layer: &mut GridLayer,
-    p: u32,
     force: DVec2,
     at: DVec2,
 ) {
-    let p = p as usize;
-    let (position, half_size) = (points.position[p], points.half_size[p]);
+    let (position, half_size) = place.position_and_half_size();
     let Some(stencil) = kernel.stencil(position, half_size, stencil_grid) else {
         return;
     };
     let moment = outer(force, at - position);
+    if let PointPlace::Elsewhere(..) = place {
+        // Each node's share formed alone (−0 is the sum's identity, so a
+        // node's share is the very term it gets on the point's process),
+        // then added to the nodes inside the window.
+        let mut shares = [DVec2::splat(-0.0); 9];
+        stencil.scatter(&mut shares, stencil.base, 3, |share, _, g, _| {
+            *share += moment * g;
+        });
+        for (k, share) in shares.iter().enumerate() {
+            let node = [
+                stencil.base[0] as usize + k % 3,
+                stencil.base[1] as usize + k / 3,
+            ];
+            if let Some(node) = layer.node_mut(node) {
+                node.external_force += *share;
+            }
+        }
+        return;
+    }
     let window = layer.window();
     let (origin, row_len) = (window.start.map(|k| k as u32), window.width());
     stencil.scatter(layer.nodes_mut(), origin, row_len, |node, _, g, _| {
@@ -120,8 +173,8 @@ fn add_moment(
     });
 }
 
-/// Splits `force` on point `p` over `count` points of the contact edge of
-/// its domain and adds each share to the layer with the hat functions. The
+/// Splits `force` on the point at `place` over `count` points of the
+/// contact edge of its domain and adds each share to the layer with the hat functions. The
 /// edge faces the contact: it is turned to the normal part `normal` of the
 /// force (to the force itself where that part is zero), not to the force
 /// as the paper turns it. Turned with a force that friction tilts, the
@@ -131,9 +184,8 @@ fn add_moment(
 /// pushed it in, in 0.2 s, against 0.9% turned to the normal.
 fn add_traction(
     grid: &Grid,
-    points: &MaterialPoints,
+    place: PointPlace,
     layer: &mut GridLayer,
-    p: u32,
     (force, normal): (DVec2, DVec2),
     count: u32,
 ) {
@@ -141,7 +193,7 @@ fn add_traction(
     if magnitude == 0.0 {
         return;
     }
-    let p = p as usize;
+    let (position, half_size) = place.position_and_half_size();
     // A contact's tangential force is at most μ times its normal force
     // (eq. 18b), so a force with no normal part is zero and has returned
     // above; the fallback only guards against a normal part lost to
@@ -149,7 +201,7 @@ fn add_traction(
     let direction = normal.try_normalize().unwrap_or(force / magnitude);
     let share = force / count as Real;
     // uGIMP domains are square: the x half-size is the half-size.
-    for at in traction_points(points.position[p], points.half_size[p].x, direction, count) {
+    for at in traction_points(position, half_size.x, direction, count) {
         add_with_hat_functions(grid, layer, at, share);
     }
 }

@@ -4,6 +4,8 @@
 use crate::components::{
     BlockContacts, BlockId, BodyIndex, MaterialPoints, Pose, sort_into_scene_order,
 };
+use crate::distributed::{Domain, PointIds, add_in_order, local_index};
+use crate::math::Real;
 use crate::resources::{BodyContacts, Clock, ContactWork};
 use bevy_ecs::prelude::*;
 
@@ -29,9 +31,13 @@ use bevy_ecs::prelude::*;
 /// change only by the time integration's error, which belongs to the
 /// balance, not to dissipation.
 ///
+/// In a distributed run each process forms the terms of the contacts of
+/// its own points, and every process adds all of them in that order.
+///
 /// Reads: `Clock`, `BlockId`, `BlockContacts`, `Pose`, `BodyContacts`,
 /// `BodyIndex`, `MaterialPoints` (position, velocity gradient, contact
 /// radius). Writes: `ContactWork`.
+#[allow(clippy::too_many_arguments)] // the distributed run's share is three more
 pub fn account_contact_work(
     clock: Res<Clock>,
     mut work: ResMut<ContactWork>,
@@ -40,25 +46,45 @@ pub fn account_contact_work(
     mut slots: Local<Vec<Option<Entity>>>,
     bodies: Query<(Entity, &BodyIndex, &MaterialPoints)>,
     blocks: Query<(Entity, &BlockId, &Pose, &BlockContacts)>,
+    domain: Option<NonSend<Domain>>,
+    ids: Query<&PointIds>,
+    mut held: Local<Vec<(u64, [Real; 2])>>,
 ) {
     let mut done = work.tangential_work;
     let mut by_blocks = work.block_work;
     sort_into_scene_order(&mut order, blocks.iter().map(|(e, id, ..)| (id.index, e)));
+    held.clear();
+    let mut place = 0u64;
     for (_, entity) in order.iter() {
         let Ok((_, _, pose, contacts)) = blocks.get(*entity) else {
             continue;
         };
         for c in &contacts.current {
+            place += 1;
             let Ok((_, _, points)) = bodies.get(c.body) else {
                 continue;
             };
-            let k = c.point as usize;
+            let Some(k) = local_index(ids.get(c.body).ok(), c.point) else {
+                continue;
+            };
             let turned = points.velocity_gradient[k] * c.arm() * clock.dt;
             let moved = points.position[k] - c.from + turned;
             let surface_moved = pose.to_world(c.at_on_block) - c.at;
-            done += c.tangential.dot(moved - surface_moved) + c.spring_work_correction;
-            by_blocks += c.force.dot(surface_moved);
+            let terms = [
+                c.tangential.dot(moved - surface_moved) + c.spring_work_correction,
+                c.force.dot(surface_moved),
+            ];
+            if domain.is_some() {
+                held.push((place, terms));
+            } else {
+                done += terms[0];
+                by_blocks += terms[1];
+            }
         }
+    }
+    // Every process holds the same blocks.
+    if let Some(domain) = domain.filter(|_| !order.is_empty()) {
+        [done, by_blocks] = add_in_order(&domain, &held, [done, by_blocks]);
     }
     if let Some(body_contacts) = body_contacts.filter(|c| !c.current.is_empty()) {
         slots.clear();

@@ -504,7 +504,7 @@ fn scatter_momentum(
         .rows_mut(window, into)
         .for_each(|(_, row)| row.fill(DVec2::ZERO));
     let foreign = foreign_patches(domain, momentum);
-    momentum.add_into_with(&foreign, into, window, |u, mv| *u += mv);
+    momentum.add_into_with(&foreign, into, (window, active), |u, mv| *u += mv);
 }
 
 /// Turns the nodal momentum in `field` into velocity on the layer's active

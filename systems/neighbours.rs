@@ -4,6 +4,7 @@ use crate::components::{
     BodyIndex, MaterialPoints, NeighbourList, Pose, RigidShape, RigidVelocity, StepTravel,
     sort_into_scene_order,
 };
+use crate::distributed::{Domain, largest};
 use crate::math::{DVec2, Real};
 use crate::resources::{Clock, ContactSettings, Grid};
 use bevy_ecs::prelude::*;
@@ -17,8 +18,13 @@ use bevy_ecs::prelude::*;
 /// reaches the block's bounding box grown by the margin, bodies in scene
 /// order, points in order.
 ///
+/// In a distributed run a process lists its own points, by where it
+/// stores them, and the largest step is every process's: the lists are
+/// rebuilt at the same steps on every process.
+///
 /// Reads: `Clock`, `Grid`, `ContactSettings`, `MaterialPoints`, `StepTravel`, block pose,
 /// velocity and shape. Writes: `NeighbourList`.
+#[allow(clippy::too_many_arguments)] // the distributed run's domain is one more
 pub fn rebuild_neighbour_lists(
     clock: Res<Clock>,
     grid: Res<Grid>,
@@ -26,15 +32,19 @@ pub fn rebuild_neighbour_lists(
     mut order: Local<Vec<(BodyIndex, Entity)>>,
     bodies: Query<(Entity, &BodyIndex, &MaterialPoints, &StepTravel)>,
     mut blocks: Query<(&RigidShape, &Pose, &RigidVelocity, &mut NeighbourList)>,
+    domain: Option<NonSend<Domain>>,
 ) {
     if blocks.is_empty() {
         return;
     }
     sort_into_scene_order(&mut order, bodies.iter().map(|(e, i, _, _)| (*i, e)));
-    let point_step = bodies
+    let mut point_step = bodies
         .iter()
         .map(|(_, _, _, travel)| travel.0)
         .fold(0.0, Real::max);
+    if let Some(domain) = domain {
+        point_step = largest(&domain, point_step);
+    }
     let margin = settings.margin_or(grid.cell_size);
     for (shape, pose, velocity, mut list) in &mut blocks {
         let aabb = shape.0.compute_aabb(&pose.to_parry());

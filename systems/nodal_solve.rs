@@ -57,7 +57,8 @@ pub fn solve_nodal_momentum(
         }
         let window = layer.window();
         let foreign = foreign_patches(domain.as_deref(), internal_force);
-        internal_force.add_into_with(&foreign, layer.nodes_mut(), window, |n, f| {
+        let active = layer.active();
+        internal_force.add_into_with(&foreign, layer.nodes_mut(), (window, active), |n, f| {
             n.internal_force += f
         });
     }

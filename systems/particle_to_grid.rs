@@ -139,7 +139,8 @@ pub fn particle_to_grid(
             );
         }
         let foreign = foreign_patches(domain.as_deref(), mass_momentum);
-        mass_momentum.add_into_with(&foreign, layer.nodes_mut(), window, |n, t| {
+        let active = layer.active();
+        mass_momentum.add_into_with(&foreign, layer.nodes_mut(), (window, active), |n, t| {
             n.mass += t.mass;
             n.momentum += t.momentum;
             n.external_force += t.external_force;

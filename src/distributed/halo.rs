@@ -199,7 +199,7 @@ mod tests {
             );
             let shared = foreign.map(|f| f(&scatter)).unwrap_or_default();
             let mut sums = vec![MassMomentumForce::default(); whole.area()];
-            scatter.add_into_with(&shared, &mut sums, whole, |n, t| *n += t);
+            scatter.add_into_with(&shared, &mut sums, (whole, whole), |n, t| *n += t);
             sums
         };
         let all: Vec<usize> = (0..stencils.len()).collect();

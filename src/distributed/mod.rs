@@ -10,8 +10,10 @@
 //! feature gives one over MPI, and [`LocalRanks`] one over channels between
 //! threads.
 
+mod contacts;
 mod failures;
 mod halo;
+mod lists;
 #[cfg(feature = "mpi")]
 mod mpi_ranks;
 mod points;
@@ -19,6 +21,9 @@ mod records;
 mod strips;
 mod transport;
 
+pub(crate) use contacts::{
+    ContactHalfSizes, SharedContact, add_in_order, largest, local_index, share_contacts,
+};
 pub(crate) use halo::foreign_patches;
 #[cfg(feature = "mpi")]
 pub use mpi_ranks::MpiRanks;

@@ -2,6 +2,7 @@
 //! order, the first sharing out, the migration at the start of every step,
 //! and the gathering of every point on rank 0.
 
+use super::lists::{follow_moved_points, gather_lists, keep_listed, swap_lists};
 use super::{Domain, Strips, Transport};
 use crate::Simulation;
 use crate::components::{MaterialPoints, bodies_in_scene_order};
@@ -64,8 +65,10 @@ pub fn attach(sim: &mut Simulation, transport: Box<dyn Transport>) -> Result<(),
         let kept = points.select(&own);
         let ids = PointIds(own.iter().map(|&p| p as u64).collect());
         world.entity_mut(body).insert((kept, ids));
+        keep_listed(world, body, &own);
     }
     world.insert_non_send(Domain::new(transport, strips, grid_columns(&grid)));
+    world.init_resource::<super::ContactHalfSizes>();
     sim.add_systems((
         migrate_points
             .in_set(MpmSystems::GridReset)
@@ -92,13 +95,11 @@ pub enum DistributeError {
     Systems(#[from] crate::StepError),
 }
 
-/// The parts of `scene` the distributed step does not yet cover: contacts
-/// and blocks gather forces from points of every process, stages keep
-/// lists of points, and the fronts and deposits are sampled over a whole
-/// body.
+/// The parts of `scene` the distributed step does not yet cover: body
+/// contacts pair points of different processes, stages keep lists of
+/// points, and the fronts and deposits are sampled over a whole body.
 pub fn unsupported_parts(scene: &crate::scene::Scene) -> Vec<&'static str> {
     [
-        (!scene.blocks.is_empty(), "rigid blocks"),
         (!scene.body_contacts.is_empty(), "body contacts"),
         (!scene.stages.is_empty(), "stages"),
         (scene.output.fronts, "fronts and deposits (output.fronts)"),
@@ -212,8 +213,13 @@ fn migrate_points(world: &mut World) {
         if staying && arrived.iter().all(|(ids, _)| ids.is_empty()) {
             continue;
         }
-        let (ids, points) = in_id_order(parcel(&going[rank]), arrived);
-        world.entity_mut(body).insert((points, ids));
+        let (after, points) = in_id_order(parcel(&going[rank]), arrived);
+        let before = std::mem::replace(
+            &mut *world.get_mut::<PointIds>(body).expect("a body's ids"),
+            after.clone(),
+        );
+        world.entity_mut(body).insert(points);
+        follow_moved_points(world, body, &before, &after);
     }
 }
 
@@ -273,14 +279,20 @@ pub fn with_all_points<R>(sim: &mut Simulation, f: impl FnOnce(&mut Simulation) 
         );
         gathered.push((body, own));
     }
+    let lists = gather_lists(world);
     if world.non_send::<Domain>().rank() != 0 {
         return None;
     }
+    let own_lists = lists.map(|lists| swap_lists(sim.world_mut(), lists));
     let result = f(sim);
+    let world = sim.world_mut();
     for (body, own) in gathered {
-        *sim.world_mut()
+        *world
             .get_mut::<MaterialPoints>(body)
             .expect("a body's points") = own;
+    }
+    if let Some(own_lists) = own_lists {
+        swap_lists(world, own_lists);
     }
     Some(result)
 }
