@@ -117,8 +117,8 @@ fn the_sliding_block_on_one_to_four_ranks_is_the_one_process_block() {
 /// A reduced stacked-blocks case (cells twice as large, the grains nearer
 /// the blocks and thrown at them at 2 m/s): points of several ranks hit a
 /// fixed block and two dynamic ones stacked on it, which every rank moves
-/// alike. Its fronts record is left out: the distributed step does not
-/// cover it yet.
+/// alike; its fronts and deposits (`fronts.csv`, `deposit.csv`) are
+/// recorded from every rank's points.
 #[test]
 fn the_stacked_blocks_on_one_to_four_ranks_are_the_one_process_blocks() {
     let moved = same_state_on_any_number_of_ranks(&reduced_stacked_blocks(), 400);
@@ -130,7 +130,6 @@ fn reduced_stacked_blocks() -> Scene {
     let mut scene = common::load_scene("stacked_blocks.ron");
     scene.grid.cell_size *= 2.0;
     scene.grid.cells = (scene.grid.cells.0 / 2, scene.grid.cells.1 / 2);
-    scene.output.fronts = false;
     scene.bodies[0].shape = mpdem::scene::Shape::Rectangle {
         min: DVec2::new(0.1, 0.0),
         max: DVec2::new(0.275, 0.2),

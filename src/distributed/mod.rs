@@ -30,7 +30,7 @@ pub use mpi_ranks::MpiRanks;
 pub use points::{
     DistributeError, PointIds, REBALANCE_EVERY, attach, unsupported_parts, with_all_points,
 };
-pub(crate) use records::{add_tile_sums, record_probes};
+pub(crate) use records::{add_tile_sums, gather_columns, record_probes};
 pub use strips::Strips;
 pub use transport::{LocalRanks, Transport};
 

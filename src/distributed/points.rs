@@ -96,13 +96,12 @@ pub enum DistributeError {
 }
 
 /// The parts of `scene` the distributed step does not yet cover: body
-/// contacts pair points of different processes, stages keep lists of
-/// points, and the fronts and deposits are sampled over a whole body.
+/// contacts pair points of different processes, and stages keep lists of
+/// points.
 pub fn unsupported_parts(scene: &crate::scene::Scene) -> Vec<&'static str> {
     [
         (!scene.body_contacts.is_empty(), "body contacts"),
         (!scene.stages.is_empty(), "stages"),
-        (scene.output.fronts, "fronts and deposits (output.fronts)"),
     ]
     .into_iter()
     .filter_map(|(found, part)| found.then_some(part))

@@ -3,7 +3,7 @@
 
 use super::{Domain, PointIds};
 use crate::components::MaterialPoints;
-use crate::math::Real;
+use crate::math::{DVec2, Real};
 use crate::resources::{ProbeSample, Probes};
 use bevy_ecs::prelude::Entity;
 use serde::{Serialize, de::DeserializeOwned};
@@ -62,4 +62,39 @@ where
         .collect();
     all.sort_by_key(|(tile, _)| *tile);
     all.iter().fold(T::default(), |total, (_, s)| total + *s)
+}
+
+/// A body's point columns the fronts and deposits read: position,
+/// domain half-size and mass.
+type OutlineColumns = (Vec<DVec2>, Vec<DVec2>, Vec<Real>);
+
+/// On rank 0, `columns` of every process's points of one body, in the
+/// points' one-process order (the other processes send theirs, with their
+/// `ids`, and get `None`). Every process calls it for the same body.
+pub(crate) fn gather_columns(
+    domain: &Domain,
+    ids: &PointIds,
+    (position, half_size, mass): (&Vec<DVec2>, &Vec<DVec2>, &Vec<Real>),
+) -> Option<OutlineColumns> {
+    if domain.rank() != 0 {
+        let bytes =
+            postcard::to_stdvec(&(&ids.0, position, half_size, mass)).expect("columns encode");
+        domain.transport().exchange(vec![(0, bytes)], &[]);
+        return None;
+    }
+    let others: Vec<usize> = (1..domain.ranks()).collect();
+    let mut all: Vec<(u64, DVec2, DVec2, Real)> = (0..ids.0.len())
+        .map(|k| (ids.0[k], position[k], half_size[k], mass[k]))
+        .collect();
+    for bytes in domain.transport().exchange(Vec::new(), &others) {
+        let (their_ids, x, h, m): (Vec<u64>, Vec<DVec2>, Vec<DVec2>, Vec<Real>) =
+            postcard::from_bytes(&bytes).expect("columns decode");
+        all.extend((0..their_ids.len()).map(|k| (their_ids[k], x[k], h[k], m[k])));
+    }
+    all.sort_unstable_by_key(|p| p.0);
+    Some((
+        all.iter().map(|p| p.1).collect(),
+        all.iter().map(|p| p.2).collect(),
+        all.iter().map(|p| p.3).collect(),
+    ))
 }

@@ -8,9 +8,10 @@ use super::{MpmPlugin, PluginSetup};
 use crate::checkpoint::{Checkpointed, TimeRecord};
 use crate::components::{BodyIndex, MaterialPoints};
 use crate::deposit::{DepositDatum, SurfaceProfile, TOE_LEVELS, share_beyond};
+use crate::distributed::{Domain, PointIds, gather_columns};
 use crate::io::csv::CsvSeries;
 use crate::io::figure::{Curve, Figure, FigureContext};
-use crate::math::Real;
+use crate::math::{DVec2, Real};
 use crate::resources::{Clock, Diagnostics, Grid, Sampling, UpdateScheme};
 use crate::scene::SceneError;
 use crate::systems::{DiagnosticsStep, record_probes_and_energy};
@@ -92,11 +93,7 @@ impl FrontLog {
 
     /// Appends the front of every body of `bodies` at `time`, in scene
     /// order.
-    fn record<'a>(
-        &mut self,
-        time: Real,
-        bodies: impl Iterator<Item = (&'a BodyIndex, &'a MaterialPoints)>,
-    ) {
+    fn record<'a>(&mut self, time: Real, bodies: impl Iterator<Item = BodyOutline<'a>>) {
         let first = self.samples.len();
         for (index, points) in bodies {
             self.scratch.clear();
@@ -104,7 +101,7 @@ impl FrontLog {
             let (farthest, bulk) = fronts(&mut self.scratch);
             let datum = self.datums[index.0 as usize];
             self.profile
-                .measure(&points.position, &points.half_size, datum.base);
+                .measure(points.position, points.half_size, datum.base);
             let [toe_2, toe_5] = TOE_LEVELS.map(|f| self.profile.toe(f * datum.height));
             self.samples.push(FrontSample {
                 time,
@@ -113,7 +110,7 @@ impl FrontLog {
                 bulk,
                 toe_2,
                 toe_5,
-                spray: share_beyond(toe_2, &points.position, &points.mass),
+                spray: share_beyond(toe_2, points.position, points.mass),
             });
         }
         self.samples[first..].sort_unstable_by_key(|s| s.body);
@@ -137,16 +134,12 @@ pub struct DepositLog {
 impl DepositLog {
     /// Appends the surface of every body of `bodies` at `time`, in scene
     /// order, each column with material over it.
-    fn record<'a>(
-        &mut self,
-        time: Real,
-        bodies: impl Iterator<Item = (&'a BodyIndex, &'a MaterialPoints)>,
-    ) {
+    fn record<'a>(&mut self, time: Real, bodies: impl Iterator<Item = BodyOutline<'a>>) {
         let first = self.columns.len();
         for (index, points) in bodies {
             let base = self.bases[index.0 as usize];
             self.profile
-                .measure(&points.position, &points.half_size, base);
+                .measure(points.position, points.half_size, base);
             let profile = &self.profile;
             let covered = profile
                 .heights
@@ -185,24 +178,89 @@ fn fronts(xs: &mut [Real]) -> (Real, Real) {
     (farthest, bulk)
 }
 
+/// A body's index and the columns of its points the fronts and the
+/// deposits read.
+type BodyOutline<'a> = (&'a BodyIndex, OutlineColumns<'a>);
+
+/// The columns of a body's points the fronts and the deposits read, each
+/// in the points' one-process order.
+#[derive(Clone, Copy)]
+struct OutlineColumns<'a> {
+    position: &'a [DVec2],
+    half_size: &'a [DVec2],
+    mass: &'a [Real],
+}
+
+impl<'a> OutlineColumns<'a> {
+    fn of(points: &'a MaterialPoints) -> Self {
+        Self {
+            position: &points.position,
+            half_size: &points.half_size,
+            mass: &points.mass,
+        }
+    }
+}
+
+/// The outlines of `bodies`.
+fn outlines<'a>(
+    bodies: impl Iterator<Item = (&'a BodyIndex, &'a MaterialPoints)>,
+) -> impl Iterator<Item = BodyOutline<'a>> {
+    bodies.map(|(index, points)| (index, OutlineColumns::of(points)))
+}
+
 /// Samples the fronts when the probes are sampled and the surfaces at the
-/// frames, unless the step failed.
+/// frames, unless the step failed. In a distributed run rank 0 gathers the
+/// columns it reads from every process, and records alone: the records
+/// are written, and checkpointed, from rank 0.
 fn record_fronts(
-    clock: Res<Clock>,
-    diagnostics: Res<Diagnostics>,
-    sampling: Res<Sampling>,
+    (clock, diagnostics, sampling): (Res<Clock>, Res<Diagnostics>, Res<Sampling>),
     mut fronts: ResMut<FrontLog>,
     mut deposits: ResMut<DepositLog>,
-    bodies: Query<(&BodyIndex, &MaterialPoints)>,
+    bodies: Query<(&BodyIndex, &MaterialPoints, Option<&PointIds>)>,
+    domain: Option<NonSend<Domain>>,
 ) {
     if diagnostics.failure.is_some() {
         return;
     }
-    if sampling.due(&clock) {
-        fronts.record(clock.time, bodies.iter());
+    let (fronts_due, deposits_due) = (sampling.due(&clock), deposits.due(&clock));
+    if !(fronts_due || deposits_due) {
+        return;
     }
-    if deposits.due(&clock) {
-        deposits.record(clock.time, bodies.iter());
+    let Some(domain) = domain else {
+        let held = || outlines(bodies.iter().map(|(index, points, _)| (index, points)));
+        if fronts_due {
+            fronts.record(clock.time, held());
+        }
+        if deposits_due {
+            deposits.record(clock.time, held());
+        }
+        return;
+    };
+    let mut ordered: Vec<_> = bodies.iter().collect();
+    ordered.sort_unstable_by_key(|(index, ..)| index.0);
+    let mut gathered = Vec::with_capacity(ordered.len());
+    for (index, points, ids) in ordered {
+        let ids = ids.expect("a distributed body's ids");
+        let columns = (&points.position, &points.half_size, &points.mass);
+        if let Some(whole) = gather_columns(&domain, ids, columns) {
+            gathered.push((index, whole));
+        }
+    }
+    let whole = || {
+        gathered.iter().map(|(index, (position, half_size, mass))| {
+            let columns = OutlineColumns {
+                position,
+                half_size,
+                mass,
+            };
+            (*index, columns)
+        })
+    };
+    if fronts_due && !gathered.is_empty() {
+        fronts.record(clock.time, whole());
+    }
+    if deposits_due && !gathered.is_empty() {
+        deposits.record(clock.time, whole());
     }
 }
 
@@ -222,7 +280,7 @@ impl MpmPlugin for FrontsPlugin {
         let mut query = setup.world.query::<(&BodyIndex, &MaterialPoints)>();
         let mut log = FrontLog::new(&grid, query.iter(setup.world));
         log.samples.reserve_exact(samples * bodies);
-        log.record(0.0, query.iter(setup.world));
+        log.record(0.0, outlines(query.iter(setup.world)));
         let every = setup.scene.output.frame_every(clock.end, clock.dt).max(1);
         let profiles = (clock.total_steps() / every + 2) as usize;
         let mut deposits = DepositLog {
@@ -231,7 +289,7 @@ impl MpmPlugin for FrontsPlugin {
             bases: log.datums.iter().map(|d| d.base).collect(),
             profile: log.profile.clone(),
         };
-        deposits.record(0.0, query.iter(setup.world));
+        deposits.record(0.0, outlines(query.iter(setup.world)));
         setup.world.insert_resource(log);
         setup.world.insert_resource(deposits);
         setup.record::<FrontLog>("fronts", "fronts.csv");
