@@ -11,7 +11,8 @@
 //! more, and the run then blows up long after the check at the start.
 
 use crate::components::{BodyIndex, BodyName, Material, MaterialPoints, sort_into_scene_order};
-use crate::math::Real;
+use crate::distributed::{Domain, PointIds};
+use crate::math::{DVec2, Real};
 use crate::parallel::MIN_POINTS_PER_TASK;
 use crate::resources::{Clock, Diagnostics, Grid};
 use crate::warning::{Warning, WarningKind};
@@ -26,7 +27,9 @@ const LOOSE_POINT_CHECK_EVERY: u64 = 64;
 /// not warned yet: its loosest point that carries stress, and a warning in
 /// `Diagnostics::warnings` if Δt exceeds that point's stable step
 /// h / (c √(V/V⁰)). Points with zero stress (disconnected, or at a
-/// cohesionless apex) carry no stiffness and are left out.
+/// cohesionless apex) carry no stiffness and are left out. In a
+/// distributed run the loosest point is every process's, named by its
+/// one-process index, and every process warns alike.
 ///
 /// Reads: `Clock`, `Grid`, `BodyIndex`, `BodyName`, `Material`,
 /// `MaterialPoints` (position, volume, initial volume, stress). Writes:
@@ -37,6 +40,7 @@ pub fn check_loose_points(
     mut order: Local<Vec<(BodyIndex, Entity)>>,
     mut warned: Local<Vec<Entity>>,
     bodies: Query<(Entity, &BodyIndex, &BodyName, &MaterialPoints, &Material)>,
+    (domain, ids): (Option<NonSend<Domain>>, Query<&PointIds>),
 ) {
     // A failed step's state may hold NaNs; its failure is what to say.
     if !clock.step.is_multiple_of(LOOSE_POINT_CHECK_EVERY) || diagnostics.failure.is_some() {
@@ -54,7 +58,14 @@ pub fn check_loose_points(
         let Some(limit) = loosest_stable_ratio(grid.cell_size, wave_speed, clock.dt) else {
             continue;
         };
-        let Some((ratio, p)) = loosest_stressed_point(points) else {
+        let mut loosest = loosest_stressed_point(points).map(|(ratio, p)| {
+            let id = ids.get(entity).map_or(p as u64, |ids| ids.0[p]);
+            (ratio, id, points.position[p])
+        });
+        if let Some(domain) = &domain {
+            loosest = loosest_of_all(domain, loosest);
+        }
+        let Some((ratio, p, at)) = loosest else {
             continue;
         };
         if ratio <= limit {
@@ -62,12 +73,33 @@ pub fn check_loose_points(
         }
         warned.push(entity);
         let stable = grid.cell_size / (wave_speed * ratio.sqrt());
-        let at = points.position[p];
         diagnostics.warnings.push(Warning::new(WarningKind::TimeStep, format!("bodies[\"{}\"]", name.0), format!(
             "step {} (t = {:.6e} s): body '{}', point {p} at ({:.4}, {:.4}) carries stress at {ratio:.3} times its placed volume; at that density its elastic wave crosses a cell in h / (c sqrt(V/V0)) = {stable:.3e} s, less than time.dt = {:e} s, so the run may blow up. A material that dilates without end under shear (dilation_angle > 0) does this, as does a point stretched loose and squeezed again: `disconnected_above` takes the stress off points looser than a critical density, and a smaller time.dt follows the point further",
             clock.step, clock.time, name.0, at.x, at.y, clock.dt
         )));
     }
+}
+
+/// A body's loosest stressed point: its volume ratio, one-process index
+/// and position.
+type Loosest = Option<(Real, u64, DVec2)>;
+
+/// The loosest of every process's `loosest`: the largest ratio, the
+/// lowest index of equals, as one process picks it.
+fn loosest_of_all(domain: &Domain, loosest: Loosest) -> Loosest {
+    let bytes = postcard::to_stdvec(&loosest).expect("a point encodes");
+    domain
+        .transport()
+        .all_gather(bytes)
+        .iter()
+        .filter_map(|b| postcard::from_bytes::<Loosest>(b).expect("a point decodes"))
+        .reduce(|a, b| {
+            if b.0 > a.0 || (b.0 == a.0 && b.1 < a.1) {
+                b
+            } else {
+                a
+            }
+        })
 }
 
 /// The largest volume ratio V/V⁰ at which a point of wave speed

@@ -384,3 +384,55 @@ fn a_scene_with_body_contacts_is_refused_with_what_is_not_covered() {
         "{refusal}"
     );
 }
+
+/// A point grown too loose for the time step on one rank is warned of on
+/// every rank, named as one process names it, with one process's message.
+#[test]
+fn a_loose_point_on_one_rank_is_warned_of_on_all() {
+    use mpdem::components::MaterialPoints;
+    let scene = common::load_scene("elastic_column.ron");
+    // Scales point `id`'s deformation gradient, on the rank holding it, to
+    // 12 times its placed volume (stable up to 9.3: see loose_points.rs).
+    let loosen = |sim: &mut Simulation, id: u64| {
+        let world = sim.world_mut();
+        let mut query = world.query::<(&mut MaterialPoints, Option<&PointIds>)>();
+        for (mut points, ids) in query.iter_mut(world) {
+            let held = ids.map_or(Some(id as usize), |ids| ids.0.binary_search(&id).ok());
+            if let Some(p) = held {
+                let stretch = 12.0_f64.sqrt() / points.deformation_gradient[p].determinant().sqrt();
+                points.deformation_gradient[p] *= stretch;
+                points.volume[p] = 12.0 * points.initial_volume[p];
+            }
+        }
+    };
+    let run = |sim: &mut Simulation| {
+        for _ in 0..64 {
+            sim.step().unwrap_or_else(|e| panic!("{e}"));
+        }
+        loosen(sim, 40);
+        for _ in 0..64 {
+            sim.step().unwrap_or_else(|e| panic!("{e}"));
+        }
+        sim.step_warnings().to_vec()
+    };
+    let mut one = Simulation::from_scene(&scene).unwrap_or_else(|e| panic!("{e}"));
+    let expected = run(&mut one);
+    assert_eq!(expected.len(), 1, "{expected:?}");
+    assert!(expected[0].message.contains("point 40 "), "{}", expected[0]);
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = LocalRanks::connected(3)
+            .into_iter()
+            .map(|transport| {
+                let scene = &scene;
+                scope.spawn(move || {
+                    let mut sim = Simulation::from_scene(scene).unwrap_or_else(|e| panic!("{e}"));
+                    attach(&mut sim, Box::new(transport)).unwrap_or_else(|e| panic!("{e}"));
+                    run(&mut sim)
+                })
+            })
+            .collect();
+        for handle in handles {
+            assert_eq!(handle.join().expect("a rank panicked"), expected);
+        }
+    });
+}

@@ -73,9 +73,12 @@ pub fn attach(sim: &mut Simulation, transport: Box<dyn Transport>) -> Result<(),
         migrate_points
             .in_set(MpmSystems::GridReset)
             .before(crate::systems::reset_grid_layers),
+        // Before the loose points' check, which every process makes only
+        // after a step none failed.
         super::failures::agree_on_failures
             .in_set(DiagnosticsStep::CheckFinite)
-            .after(crate::systems::check_loose_points),
+            .after(crate::systems::check_finite)
+            .before(crate::systems::check_loose_points),
     ))?;
     Ok(())
 }
