@@ -582,10 +582,7 @@ impl Runner {
             }
             let due = checkpoint_steps.is_some_and(|n| now.step.is_multiple_of(n));
             if failure.is_none() && (due || (keeps_checkpoint && now.finished())) {
-                let written = with_points(sim, true, |sim| match writes {
-                    true => sim.write_checkpoint(&checkpoint),
-                    false => Ok(()),
-                });
+                let written = with_points(sim, true, |sim| sim.write_checkpoint(&checkpoint));
                 match written {
                     Ok(()) => checkpoint_at = Some(now.step),
                     Err(e) => failure = Some(format!("cannot write the checkpoint at {}", at(&e))),
@@ -621,11 +618,7 @@ impl Runner {
         let cut_short = sim.cut_short();
         let stopped = failure.is_none() && !now.finished();
         let stop_checkpoint = (stopped && keeps_checkpoint && !cut_short).then(|| {
-            with_points(sim, true, |sim| match writes {
-                true => sim.write_checkpoint(&checkpoint),
-                false => Ok(()),
-            })
-            .map_err(Box::new)
+            with_points(sim, true, |sim| sim.write_checkpoint(&checkpoint)).map_err(Box::new)
         });
         let failed = failure.is_some() || cut_short;
         let finished = with_points(sim, true, |sim| {

@@ -4,16 +4,18 @@
 //! index, with the points on rank 0.
 
 use super::{Domain, PointIds};
-use crate::components::{BlockId, BodyIndex, NeighbourList, StepTravel, bodies_in_scene_order};
+use crate::components::{
+    BlockId, BodyIndex, NeighbourList, StepTravel, bodies_in_scene_order, sort_into_scene_order,
+};
 use crate::math::Real;
 use bevy_ecs::prelude::*;
 
 /// The blocks, in scene order.
 fn blocks_in_scene_order(world: &mut World) -> Vec<Entity> {
+    let mut order = Vec::new();
     let mut query = world.query::<(Entity, &BlockId)>();
-    let mut blocks: Vec<(u32, Entity)> = query.iter(world).map(|(e, id)| (id.index, e)).collect();
-    blocks.sort_unstable();
-    blocks.into_iter().map(|(_, e)| e).collect()
+    sort_into_scene_order(&mut order, query.iter(world).map(|(e, id)| (id.index, e)));
+    order.into_iter().map(|(_, e)| e).collect()
 }
 
 /// Keeps, in every block's list, the entries of `body`'s points this
